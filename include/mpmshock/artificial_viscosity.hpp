@@ -1,0 +1,26 @@
+// Artificial bulk viscosity for shock capturing (physics-notes section 4):
+// q = rho (A1 c h |tr D| + A2 h^2 (tr D)^2), in compression (tr D < 0) only.
+#pragma once
+
+namespace mpmshock {
+
+struct ArtificialViscosity {
+  double linear;     // A1
+  double quadratic;  // A2
+
+  // rho: current density, c: bulk sound speed, h: cell size, trD: volumetric strain rate.
+  double pressure(double rho, double c, double h, double trD) const {
+    if (trD >= 0.0) return 0.0;
+    const double rate = -trD;
+    return rho * h * rate * (linear * c + quadratic * h * rate);
+  }
+
+  // The viscous part of the signal speed, Q = A1 c + A2 h |tr D|, for the time-step bound
+  // dt <= h / (Q + sqrt(Q^2 + c^2)) of a viscous explicit scheme.
+  double signal(double c, double h, double trD) const {
+    if (trD >= 0.0) return 0.0;
+    return linear * c + quadratic * h * (-trD);
+  }
+};
+
+}  // namespace mpmshock

@@ -1,0 +1,43 @@
+// The constitutive update of every material point from its velocity gradient L:
+// internal energy from dE = V (s:D - (P + q) tr D) dt with the stress the step's forces used;
+// F <- (I + dt L) F; deviatoric stress by the Jaumann rate and radial return (plasticity);
+// Mie-Grüneisen pressure from the new volume and energy; artificial viscosity q (compression only).
+#pragma once
+
+#include <cstddef>
+
+#include "mpmshock/model.hpp"
+#include "mpmshock/particles.hpp"
+
+namespace mpmshock {
+
+struct PointState {
+  // In: the time-centred velocity gradient. In/out: everything else.
+  double Lxx, Lxy, Lyx, Lyy;
+  double Fxx, Fxy, Fyx, Fyy;
+  double E, P, q;
+  Deviator s, alpha;
+  double sigma_y, eps_p;
+};
+
+// One point, one step. Pure and grid-free, so tests can drive it directly.
+// Returns the point's signal speed (for the next time step), or a negative number if the new
+// state is not physical (J <= the EOS limit, or a non-finite result).
+template <bool Plastic, bool Viscous>
+double update_point(PointState& st, const Model& model, double dt);
+
+struct StressUpdateResult {
+  double max_signal = 0.0;           // fastest |v| + sound (+ viscous) speed, for the next dt
+  std::size_t first_bad = ~std::size_t{0};  // lowest index of a point in a bad state, if any
+};
+
+using StressUpdate = StressUpdateResult (*)(Particles&, const Model&, double dt);
+
+// The update for a set of effects, chosen once at setup.
+StressUpdate select_stress_update(bool plasticity, bool artificial_viscosity);
+
+// The signal speed of a point in its current state (|v| + longitudinal sound speed), for the
+// first time step.
+double initial_signal_speed(const Particles& p, const Model& model);
+
+}  // namespace mpmshock

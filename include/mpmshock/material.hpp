@@ -1,0 +1,30 @@
+// Material constants, SI. Defaults are the paper's aluminium with the physics-notes errata
+// (E = 69 GPa, not MPa).
+#pragma once
+
+namespace mpmshock {
+
+struct Material {
+  double density = 2700.0;               // rho0, solid reference density [kg/m3]
+  double youngs_modulus = 69e9;          // E [Pa]; with nu gives only the shear modulus
+  double poisson_ratio = 0.33;           // nu
+  double yield_stress = 120e6;           // sigma_Y0 [Pa]
+  double tangent_modulus = 384e6;        // E_tan [Pa], slope of the uniaxial stress-strain curve past yield
+  double hardening_beta = 1.0;           // 1 isotropic, 0 kinematic, between: mixed
+  double sound_speed = 5350.0;           // c0, Us-up intercept [m/s]
+  double hugoniot_slope = 1.34;          // s (the paper's lambda)
+  double gruneisen_gamma = 1.96;         // gamma0 at rho0; gamma*rho held constant
+  double specific_heat = 880.0;          // c_v [J/(kg K)]
+  double thermal_conductivity = 237.0;   // k [W/(m K)], used only with heat conduction on
+  double initial_temperature = 300.0;    // T0 [K]
+
+  // G = E / (2 (1 + nu)): the only elastic constant the deviatoric update uses (physics-notes 1).
+  double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
+
+  // Plastic modulus of the bilinear uniaxial curve: E_p = E E_tan / (E - E_tan).
+  double plastic_modulus() const {
+    return youngs_modulus * tangent_modulus / (youngs_modulus - tangent_modulus);
+  }
+};
+
+}  // namespace mpmshock

@@ -1,0 +1,46 @@
+// Region averages as the paper defines them (physics-notes section 5): over the material points
+// inside a horizontal band, the mean and standard deviation of density, pressure, temperature and
+// velocity, and the means of Rot^2, Div^2 and the squared strain-rate norm.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "mpmshock/particles.hpp"
+#include "mpmshock/scene.hpp"
+#include "mpmshock/temperature.hpp"
+
+namespace mpmshock {
+
+struct MeanStd {
+  double mean = 0.0, std = 0.0;  // population standard deviation (divides by count)
+};
+
+struct RegionStats {
+  std::string name;
+  std::size_t count = 0;
+  MeanStd density, pressure, temperature, velocity_x, velocity_y;
+  double rot2 = 0.0;          // (dv_y/dx - dv_x/dy)^2
+  double div2 = 0.0;          // (dv_x/dx + dv_y/dy)^2
+  double strain_rate2 = 0.0;  // D : D with D = sym(grad v)
+};
+
+// The points of a region, in storage order. `y_top` is the highest target point.
+std::vector<std::size_t> points_in_region(const Particles& p, const RegionSpec& region, double y_top);
+
+// Highest y of the target's points.
+double target_top(const Particles& p);
+
+// Statistics over the given points; temperature is NaN when `thermal` is null. Empty: NaN means.
+RegionStats region_stats(const Particles& p, const std::vector<std::size_t>& points, const std::string& name,
+                         const HugoniotTemperature* thermal);
+
+std::vector<RegionStats> sample_regions(const Particles& p, const std::vector<RegionSpec>& regions,
+                                        const HugoniotTemperature* thermal);
+
+// regions.csv: the header, and one row per region and sample time.
+extern const char* const kRegionsHeader;
+void write_region_rows(std::FILE* out, double time, const std::vector<RegionStats>& stats);
+
+}  // namespace mpmshock

@@ -1,0 +1,123 @@
+// Particle <-> grid transfers, templates on the shape function (see shape.hpp).
+// P2G: m_i = sum N m_p, p_i = sum N m_p v_p, f_i = -sum V_p sigma_p grad N (the paper's f_int).
+// G2P: FLIP velocity v_p += dt sum N a_i; position x_p += dt sum N v_i^{n+1};
+// velocity gradient L_p = sum u_i (x) grad N_i of a nodal velocity u_i (see centre_grid_velocity).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "mpmshock/grid.hpp"
+#include "mpmshock/particles.hpp"
+#include "mpmshock/shape.hpp"
+#include "mpmshock/strip_bins.hpp"
+
+namespace mpmshock {
+
+constexpr std::size_t kNoPoint = std::numeric_limits<std::size_t>::max();
+
+// P2G of mass, momentum and internal force. Stress sigma = s - (P + q) I; without strength s = 0.
+template <class Shape, bool Strength>
+void particles_to_grid(const Particles& p, const StripBins& bins, Grid& g) {
+  const GridGeometry& geo = g.geo;
+  bins.scatter([&](std::size_t q) {
+    const auto st = Shape::at(p.x[q], p.y[q], geo);
+    const double m = p.mass[q], V = p.volume(q);
+    const double mvx = m * p.vx[q], mvy = m * p.vy[q];
+    const double pq = p.pressure[q] + p.viscosity[q];
+    double sxx = -pq, syy = -pq, sxy = 0.0;
+    if constexpr (Strength) {
+      sxx += p.sxx[q];
+      syy += p.syy[q];
+      sxy = p.sxy[q];
+    }
+    for_each_node(st, geo, [&](std::size_t i, double N, double dNx, double dNy) {
+      g.m[i] += N * m;
+      g.px[i] += N * mvx;
+      g.py[i] += N * mvy;
+      g.fx[i] -= V * (sxx * dNx + sxy * dNy);
+      g.fy[i] -= V * (sxy * dNx + syy * dNy);
+    });
+  });
+}
+
+// Explicit momentum update on the nodes of rows [row_begin, row_end): a_i = f_i / m_i (kept in f),
+// v_i^{n+1} = (p_i + dt f_i) / m_i. Periodic in x by construction, free in y: no constraints.
+// p_i is consumed, leaving zeros for the MUSL re-map.
+void update_grid_momentum(Grid& g, int row_begin, int row_end, double dt);
+
+// MUSL, time-centred: u_i = (v_i^n + v~_i^{n+1}) / 2, stored in (px, py), where v~_i^{n+1} = p_i / m_i
+// is re-mapped from the updated point velocities and v_i^n = v_i^{n+1} - dt a_i is the velocity the
+// step started from. For FLIP points the kinetic energy changes in a step by exactly
+// dt sum_i f_i . u_i = -dt sum_p V_p sigma_p : L_p[u], so a stress update that does the work
+// V_p sigma_p : L_p[u] dt conserves kinetic + internal energy to round-off.
+void centre_grid_velocity(Grid& g, int row_begin, int row_end, double dt);
+
+// G2P of the FLIP velocity increment. With Remap (MUSL), also scatters m_p v_p^{n+1} back to the
+// nodes at the same stencil.
+template <class Shape, bool Remap>
+void grid_to_particles_velocity(Particles& p, const StripBins& bins, Grid& g, double dt) {
+  const GridGeometry& geo = g.geo;
+  auto kernel = [&](std::size_t q) {
+    const auto st = Shape::at(p.x[q], p.y[q], geo);
+    double ax = 0.0, ay = 0.0;
+    for_each_node(st, geo, [&](std::size_t i, double N, double, double) {
+      ax += N * g.fx[i];
+      ay += N * g.fy[i];
+    });
+    const double vx = p.vx[q] + dt * ax, vy = p.vy[q] + dt * ay;
+    p.vx[q] = vx;
+    p.vy[q] = vy;
+    if constexpr (Remap) {
+      const double mvx = p.mass[q] * vx, mvy = p.mass[q] * vy;
+      for_each_node(st, geo, [&](std::size_t i, double N, double, double) {
+        g.px[i] += N * mvx;
+        g.py[i] += N * mvy;
+      });
+    }
+  };
+  if constexpr (Remap) {
+    bins.scatter(kernel);
+  } else {
+#pragma omp parallel for schedule(static)
+    for (std::size_t q = 0; q < p.size(); ++q) kernel(q);
+  }
+}
+
+// Velocity gradient from nodal velocities (ux, uy) and the position update from v_i^{n+1}.
+// Wraps x into [0, width). Returns the lowest index of a point that left the grid, or kNoPoint.
+template <class Shape>
+std::size_t velocity_gradient_and_move(Particles& p, const Grid& g, const std::vector<double>& ux,
+                                       const std::vector<double>& uy, double dt) {
+  const GridGeometry& geo = g.geo;
+  const double width = geo.width();
+  const int last_row = geo.ny - Shape::support;
+  std::size_t first_out = kNoPoint;
+#pragma omp parallel for schedule(static) reduction(min : first_out)
+  for (std::size_t q = 0; q < p.size(); ++q) {
+    const auto st = Shape::at(p.x[q], p.y[q], geo);
+    double Lxx = 0.0, Lxy = 0.0, Lyx = 0.0, Lyy = 0.0, vx = 0.0, vy = 0.0;
+    for_each_node(st, geo, [&](std::size_t i, double N, double dNx, double dNy) {
+      Lxx += ux[i] * dNx;
+      Lxy += ux[i] * dNy;
+      Lyx += uy[i] * dNx;
+      Lyy += uy[i] * dNy;
+      vx += N * g.vx[i];
+      vy += N * g.vy[i];
+    });
+    p.Lxx[q] = Lxx;
+    p.Lxy[q] = Lxy;
+    p.Lyx[q] = Lyx;
+    p.Lyy[q] = Lyy;
+    double x = p.x[q] + dt * vx;
+    x -= width * std::floor(x / width);
+    p.x[q] = x < width ? x : 0.0;  // floor round-off can leave x == width
+    p.y[q] += dt * vy;
+    const int row = Shape::first_row(p.y[q], geo);
+    if (!(row >= 0 && row <= last_row)) first_out = q < first_out ? q : first_out;
+  }
+  return first_out;
+}
+
+}  // namespace mpmshock

@@ -1,0 +1,126 @@
+#include "mpmshock/constitutive.hpp"
+
+#include <cmath>
+
+namespace mpmshock {
+
+template <bool Plastic, bool Viscous>
+double update_point(PointState& st, const Model& model, double dt) {
+  const MieGruneisen& eos = model.eos;
+  const double rho0 = eos.rho0();
+  const StrainRate D = strain_rate(st.Lxx, st.Lxy, st.Lyx, st.Lyy);
+
+  // Energy first, from the stress the nodal forces used this step (sigma^n = s^n - (P^n + q^n) I)
+  // and the volume they used (V^n = J^n V0): dE = (V^n / m) sigma^n : L dt. This is the exact work
+  // of those forces on the points (see centre_grid_velocity), so kinetic + internal energy is
+  // conserved; it carries compression work, plastic work and viscous heating alike.
+  const double J_old = st.Fxx * st.Fyy - st.Fxy * st.Fyx;
+  double power = -(st.P + st.q) * D.trace();
+  if constexpr (Plastic) power += stress_power(st.s, D);
+  st.E += dt * (J_old / rho0) * power;
+
+  // Kinematics: F^{n+1} = (I + dt L) F^n.
+  const double Axx = 1.0 + dt * st.Lxx, Axy = dt * st.Lxy, Ayx = dt * st.Lyx, Ayy = 1.0 + dt * st.Lyy;
+  const double Fxx = Axx * st.Fxx + Axy * st.Fyx, Fxy = Axx * st.Fxy + Axy * st.Fyy;
+  const double Fyx = Ayx * st.Fxx + Ayy * st.Fyx, Fyy = Ayx * st.Fxy + Ayy * st.Fyy;
+  st.Fxx = Fxx;
+  st.Fxy = Fxy;
+  st.Fyx = Fyx;
+  st.Fyy = Fyy;
+  const double J = Fxx * Fyy - Fxy * Fyx;
+  if (!(J > eos.limiting_compression())) return -1.0;
+  const double rho = rho0 / J;
+
+  // Deviatoric stress: Jaumann rate, then radial return onto the von Mises surface.
+  if constexpr (Plastic) {
+    const VonMises& vm = model.von_mises;
+    st.s = st.s + dt * ((2.0 * vm.shear_modulus) * D.deviator() + spin_rate(st.s, D.spin));
+    st.alpha = st.alpha + dt * spin_rate(st.alpha, D.spin);
+    st.eps_p += vm.return_map(st.s, st.alpha, st.sigma_y);
+  }
+
+  // Pressure from the new volume and energy; artificial viscosity from this step's compression rate.
+  st.P = eos.pressure(J, st.E);
+  if (!std::isfinite(st.E) || !std::isfinite(st.P)) return -1.0;
+  const double c2_bulk = std::max(eos.sound_speed_squared(J, st.P), 0.0);
+  st.q = 0.0;
+  if constexpr (Viscous) st.q = model.viscosity.pressure(rho, std::sqrt(c2_bulk), model.cell_size, D.trace());
+
+  // Fastest signal at this point: longitudinal sound speed, plus the viscous speed.
+  double c2 = c2_bulk;
+  if constexpr (Plastic) c2 += (4.0 / 3.0) * model.von_mises.shear_modulus / rho;
+  double signal = std::sqrt(c2);
+  if constexpr (Viscous) {
+    const double Q = model.viscosity.signal(std::sqrt(c2_bulk), model.cell_size, D.trace());
+    signal = Q + std::sqrt(Q * Q + c2);
+  }
+  return signal;
+}
+
+namespace {
+
+template <bool Plastic, bool Viscous>
+StressUpdateResult update_all(Particles& p, const Model& model, double dt) {
+  double max_signal = 0.0;
+  std::size_t first_bad = ~std::size_t{0};
+  const double speed_limit2 = model.speed_limit * model.speed_limit;
+#pragma omp parallel for schedule(static) reduction(max : max_signal) reduction(min : first_bad)
+  for (std::size_t q = 0; q < p.size(); ++q) {
+    PointState st{p.Lxx[q], p.Lxy[q], p.Lyx[q], p.Lyy[q], p.Fxx[q], p.Fxy[q], p.Fyx[q], p.Fyy[q],
+                  p.energy[q], p.pressure[q], p.viscosity[q], {}, {}, 0.0, 0.0};
+    if constexpr (Plastic) {
+      st.s = {p.sxx[q], p.syy[q], p.sxy[q]};
+      st.alpha = {p.axx[q], p.ayy[q], p.axy[q]};
+      st.sigma_y = p.yield_stress[q];
+      st.eps_p = p.plastic_strain[q];
+    }
+    const double signal = update_point<Plastic, Viscous>(st, model, dt);
+    p.Fxx[q] = st.Fxx;
+    p.Fxy[q] = st.Fxy;
+    p.Fyx[q] = st.Fyx;
+    p.Fyy[q] = st.Fyy;
+    p.energy[q] = st.E;
+    p.pressure[q] = st.P;
+    p.viscosity[q] = st.q;
+    if constexpr (Plastic) {
+      p.sxx[q] = st.s.xx;
+      p.syy[q] = st.s.yy;
+      p.sxy[q] = st.s.xy;
+      p.axx[q] = st.alpha.xx;
+      p.ayy[q] = st.alpha.yy;
+      p.axy[q] = st.alpha.xy;
+      p.yield_stress[q] = st.sigma_y;
+      p.plastic_strain[q] = st.eps_p;
+    }
+    const double speed2 = p.vx[q] * p.vx[q] + p.vy[q] * p.vy[q];
+    if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = q < first_bad ? q : first_bad;
+    max_signal = std::max(max_signal, std::sqrt(speed2) + signal);
+  }
+  return {max_signal, first_bad};
+}
+
+}  // namespace
+
+StressUpdate select_stress_update(bool plasticity, bool artificial_viscosity) {
+  if (plasticity) return artificial_viscosity ? update_all<true, true> : update_all<true, false>;
+  return artificial_viscosity ? update_all<false, true> : update_all<false, false>;
+}
+
+double initial_signal_speed(const Particles& p, const Model& model) {
+  double max_signal = 0.0;
+  const bool plastic = p.has_strength();
+  for (std::size_t q = 0; q < p.size(); ++q) {
+    const double J = p.J(q);
+    double c2 = std::max(model.eos.sound_speed_squared(J, p.pressure[q]), 0.0);
+    if (plastic) c2 += (4.0 / 3.0) * model.von_mises.shear_modulus / p.density(q);
+    max_signal = std::max(max_signal, std::hypot(p.vx[q], p.vy[q]) + std::sqrt(c2));
+  }
+  return max_signal;
+}
+
+template double update_point<true, true>(PointState&, const Model&, double);
+template double update_point<true, false>(PointState&, const Model&, double);
+template double update_point<false, true>(PointState&, const Model&, double);
+template double update_point<false, false>(PointState&, const Model&, double);
+
+}  // namespace mpmshock

@@ -1,0 +1,120 @@
+// mpmshock: shock waves in porous metals by the material-point method. The program is a thin
+// shell around the library: read the command line, load the scene, run or check it.
+#include <omp.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "mpmshock/run.hpp"
+#include "mpmshock/scene.hpp"
+#include "mpmshock/setup.hpp"
+#include "mpmshock/version.hpp"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: mpmshock SCENE [--set key=value]... [--check] [--quiet] [--force] [--threads N]
+       mpmshock --help | --version | --keys
+
+Runs the material-point simulation of the impact that SCENE (a key = value file) describes and
+writes regions.csv, conservation.csv, HDF5 snapshots and summary.json into its output_dir.
+
+  --set key=value  override a key of the scene (repeatable; for parameter sweeps)
+  --check          validate the scene, print the set-up (bodies, cells, material points, voids,
+                   time step, steps, memory) and exit without running
+  --quiet          no progress line on stderr
+  --force          replace the outputs of an earlier run in output_dir
+  --threads N      OpenMP threads (default: OMP_NUM_THREADS or all cores)
+  --keys           print the table of scene keys (unit, default, meaning) and exit
+  --help           this text
+  --version        the version
+
+Exit codes: 0 done, 2 bad command line or scene, 3 the run hit a non-physical state (a final
+snapshot is written), 4 output could not be written.
+)";
+
+struct Args {
+  std::string scene;
+  std::vector<std::string> overrides;
+  bool check = false, quiet = false, force = false;
+  int threads = 0;
+};
+
+[[noreturn]] void usage_error(const std::string& message) {
+  std::fprintf(stderr, "mpmshock: %s\n(see mpmshock --help)\n", message.c_str());
+  std::exit(mpmshock::kExitBadInput);
+}
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](const char* flag) {
+      if (i + 1 >= argc) usage_error(std::string(flag) + " needs a value");
+      return std::string(argv[++i]);
+    };
+    if (arg == "--help" || arg == "-h") {
+      std::fputs(kUsage, stdout);
+      std::exit(0);
+    } else if (arg == "--version") {
+      std::printf("mpmshock %s\n", mpmshock::kVersion);
+      std::exit(0);
+    } else if (arg == "--keys") {
+      std::fputs(mpmshock::key_reference_markdown().c_str(), stdout);
+      std::exit(0);
+    } else if (arg == "--set") {
+      a.overrides.push_back(value("--set"));
+    } else if (arg.rfind("--set=", 0) == 0) {
+      a.overrides.push_back(arg.substr(6));
+    } else if (arg == "--check") {
+      a.check = true;
+    } else if (arg == "--quiet" || arg == "-q") {
+      a.quiet = true;
+    } else if (arg == "--force") {
+      a.force = true;
+    } else if (arg == "--threads") {
+      const std::string v = value("--threads");
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (*end != '\0' || n < 1 || n > 4096) usage_error("--threads needs a whole number from 1 to 4096");
+      a.threads = static_cast<int>(n);
+    } else if (!arg.empty() && arg[0] == '-') {
+      usage_error("unknown option '" + arg + "'");
+    } else if (a.scene.empty()) {
+      a.scene = arg;
+    } else {
+      usage_error("more than one scene file given ('" + a.scene + "' and '" + arg + "')");
+    }
+  }
+  if (a.scene.empty()) usage_error("no scene file given");
+  return a;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Args args = parse_args(argc, argv);
+  if (args.threads > 0) omp_set_num_threads(args.threads);
+  try {
+    const mpmshock::Scene scene = mpmshock::load_scene(args.scene, args.overrides);
+    if (args.check) {
+      const mpmshock::InitialState state = mpmshock::build_initial_state(scene);
+      std::fputs(mpmshock::describe_setup(scene, state).c_str(), stdout);
+      return mpmshock::kExitOk;
+    }
+    const mpmshock::RunResult result = mpmshock::run_scene(scene, {args.quiet, args.force});
+    if (result.exit_code != mpmshock::kExitOk)
+      std::fprintf(stderr, "mpmshock: the run stopped: %s\nmpmshock: the last state is in the newest snapshot\n",
+                   result.failure.c_str());
+    std::fputs(mpmshock::describe_result(result).c_str(), stdout);
+    return result.exit_code;
+  } catch (const mpmshock::SceneError& e) {
+    std::fprintf(stderr, "mpmshock: error: %s\n", e.what());
+    return mpmshock::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mpmshock: error: %s\n", e.what());
+    return mpmshock::kExitIo;
+  }
+}

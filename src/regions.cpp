@@ -1,0 +1,109 @@
+#include "mpmshock/regions.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace mpmshock {
+
+const char* const kRegionsHeader =
+    "time,region,count,density_mean,density_std,pressure_mean,pressure_std,temperature_mean,temperature_std,"
+    "velocity_x_mean,velocity_x_std,velocity_y_mean,velocity_y_std,rot2_mean,div2_mean,strain_rate2_mean";
+
+double target_top(const Particles& p) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t q = 0; q < p.size(); ++q)
+    if (p.body[q] == Body::target) top = std::max(top, p.y[q]);
+  return top;
+}
+
+std::vector<std::size_t> points_in_region(const Particles& p, const RegionSpec& r, double y_top) {
+  double lo = 0.0, hi = 0.0;
+  bool target_only = true;
+  switch (r.kind) {
+    case RegionSpec::Kind::bottom: lo = r.a; hi = r.a + r.b; break;
+    case RegionSpec::Kind::top: lo = y_top - r.b; hi = y_top; break;
+    case RegionSpec::Kind::band: lo = r.a; hi = r.b; target_only = false; break;
+  }
+  std::vector<std::size_t> out;
+  for (std::size_t q = 0; q < p.size(); ++q) {
+    if (target_only && p.body[q] != Body::target) continue;
+    if (p.y[q] >= lo && p.y[q] <= hi) out.push_back(q);
+  }
+  return out;
+}
+
+namespace {
+
+// Mean and population deviation of f over the points, in two passes (no cancellation).
+template <class F>
+MeanStd mean_std(const std::vector<std::size_t>& points, F&& f) {
+  if (points.empty()) return {std::nan(""), std::nan("")};
+  double sum = 0.0;
+  for (std::size_t q : points) sum += f(q);
+  const double mean = sum / static_cast<double>(points.size());
+  double dev2 = 0.0;
+  for (std::size_t q : points) {
+    const double d = f(q) - mean;
+    dev2 += d * d;
+  }
+  return {mean, std::sqrt(dev2 / static_cast<double>(points.size()))};
+}
+
+template <class F>
+double mean_of(const std::vector<std::size_t>& points, F&& f) {
+  if (points.empty()) return std::nan("");
+  double sum = 0.0;
+  for (std::size_t q : points) sum += f(q);
+  return sum / static_cast<double>(points.size());
+}
+
+}  // namespace
+
+RegionStats region_stats(const Particles& p, const std::vector<std::size_t>& points, const std::string& name,
+                         const HugoniotTemperature* thermal) {
+  RegionStats s;
+  s.name = name;
+  s.count = points.size();
+  s.density = mean_std(points, [&](std::size_t q) { return p.density(q); });
+  s.pressure = mean_std(points, [&](std::size_t q) { return p.pressure[q]; });
+  if (thermal) {
+    s.temperature = mean_std(points, [&](std::size_t q) { return thermal->temperature(p.J(q), p.energy[q]); });
+  } else {
+    s.temperature = {std::nan(""), std::nan("")};
+  }
+  s.velocity_x = mean_std(points, [&](std::size_t q) { return p.vx[q]; });
+  s.velocity_y = mean_std(points, [&](std::size_t q) { return p.vy[q]; });
+  s.rot2 = mean_of(points, [&](std::size_t q) {
+    const double rot = p.Lyx[q] - p.Lxy[q];
+    return rot * rot;
+  });
+  s.div2 = mean_of(points, [&](std::size_t q) {
+    const double div = p.Lxx[q] + p.Lyy[q];
+    return div * div;
+  });
+  s.strain_rate2 = mean_of(points, [&](std::size_t q) {
+    const double Dxy = 0.5 * (p.Lxy[q] + p.Lyx[q]);
+    return p.Lxx[q] * p.Lxx[q] + p.Lyy[q] * p.Lyy[q] + 2.0 * Dxy * Dxy;
+  });
+  return s;
+}
+
+std::vector<RegionStats> sample_regions(const Particles& p, const std::vector<RegionSpec>& regions,
+                                        const HugoniotTemperature* thermal) {
+  const double y_top = target_top(p);
+  std::vector<RegionStats> out;
+  out.reserve(regions.size());
+  for (const RegionSpec& r : regions) out.push_back(region_stats(p, points_in_region(p, r, y_top), r.name, thermal));
+  return out;
+}
+
+void write_region_rows(std::FILE* out, double time, const std::vector<RegionStats>& stats) {
+  for (const RegionStats& s : stats) {
+    std::fprintf(out, "%.10g,%s,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n",
+                 time, s.name.c_str(), s.count, s.density.mean, s.density.std, s.pressure.mean, s.pressure.std,
+                 s.temperature.mean, s.temperature.std, s.velocity_x.mean, s.velocity_x.std, s.velocity_y.mean,
+                 s.velocity_y.std, s.rot2, s.div2, s.strain_rate2);
+  }
+}
+
+}  // namespace mpmshock

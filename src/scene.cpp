@@ -1,0 +1,616 @@
+#include "mpmshock/scene.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "mpmshock/units.hpp"
+
+namespace mpmshock {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Where a value came from: a file line or a --set argument.
+struct Origin {
+  std::string where;  // "scene.cfg:12" or "--set"
+};
+
+SceneError error_at(const Origin& at, const std::string& key, const std::string& message) {
+  return SceneError(at.where + ": key '" + key + "': " + message);
+}
+
+std::string format_number(double v) {
+  char buf[64];
+  auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);  // shortest text that reads back exactly
+  return ec == std::errc() ? std::string(buf, ptr) : std::string("nan");
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n\f\v");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n\f\v");
+  return s.substr(b, e - b + 1);
+}
+
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+
+  bool contains(double v) const {
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+  std::string describe(std::string_view unit) const {
+    const std::string u = unit.empty() ? "" : " " + std::string(unit);
+    std::string out;
+    if (lo > -kInf) out += std::string(lo_open ? "> " : ">= ") + format_number(lo) + u;
+    if (hi < kInf) out += std::string(out.empty() ? "" : " and ") + (hi_open ? "< " : "<= ") + format_number(hi) + u;
+    return out;
+  }
+};
+Range positive() { return {0.0, kInf, true, false}; }
+Range non_negative() { return {0.0, kInf, false, false}; }
+Range open(double lo, double hi) { return {lo, hi, true, true}; }
+Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+
+enum class Kind { quantity, integer, flag, text, choice };
+
+struct Key {
+  std::string name;
+  std::string group;
+  Kind kind = Kind::quantity;
+  Dimension dim = Dimension::none;
+  Range range;
+  std::string default_text;
+  std::string meaning;
+  std::string choices;  // for Kind::choice and flags: "musl|usl"
+  std::function<void(Scene&, const std::string& text, const Origin&)> set;
+  std::function<std::string(const Scene&)> get;  // resolved value, SI
+};
+
+template <class Ref>
+Key quantity(std::string name, std::string group, Dimension dim, Range range, std::string def, std::string meaning,
+             Ref ref) {
+  Key k;
+  k.name = name;
+  k.group = std::move(group);
+  k.kind = Kind::quantity;
+  k.dim = dim;
+  k.range = range;
+  k.default_text = std::move(def);
+  k.meaning = std::move(meaning);
+  k.set = [name, dim, range, ref](Scene& s, const std::string& text, const Origin& at) {
+    double v = 0.0;
+    try {
+      v = parse_quantity(text, dim);
+    } catch (const std::invalid_argument& e) {
+      throw error_at(at, name, e.what());
+    }
+    if (!range.contains(v)) {
+      const std::string unit(si_unit(dim));
+      throw error_at(at, name,
+                     "value " + format_number(v) + (unit.empty() ? "" : " " + unit) + " is out of range: must be " +
+                         range.describe(unit));
+    }
+    ref(s) = v;
+  };
+  k.get = [dim, ref](const Scene& s) {
+    const std::string unit(si_unit(dim));
+    return format_number(ref(s)) + (unit.empty() ? "" : " " + unit);
+  };
+  return k;
+}
+
+template <class Ref>
+Key integer(std::string name, std::string group, Range range, std::string def, std::string meaning, Ref ref) {
+  Key k;
+  k.name = name;
+  k.group = std::move(group);
+  k.kind = Kind::integer;
+  k.range = range;
+  k.default_text = std::move(def);
+  k.meaning = std::move(meaning);
+  k.set = [name, range, ref](Scene& s, const std::string& text, const Origin& at) {
+    std::int64_t v = 0;
+    const char* first = text.data();
+    const char* last = text.data() + text.size();
+    if (first != last && *first == '+') ++first;
+    auto [ptr, ec] = std::from_chars(first, last, v);
+    if (ec == std::errc::result_out_of_range) throw error_at(at, name, "'" + text + "' is too large for an integer");
+    if (ec != std::errc() || ptr != last || first == last)
+      throw error_at(at, name, "'" + text + "' is not a whole number");
+    if (!range.contains(static_cast<double>(v)))
+      throw error_at(at, name, "value " + text + " is out of range: must be " + range.describe(""));
+    ref(s) = v;
+  };
+  k.get = [ref](const Scene& s) { return std::to_string(ref(s)); };
+  return k;
+}
+
+template <class Ref>
+Key flag(std::string name, std::string group, std::string def, std::string meaning, Ref ref) {
+  Key k;
+  k.name = name;
+  k.group = std::move(group);
+  k.kind = Kind::flag;
+  k.default_text = std::move(def);
+  k.meaning = std::move(meaning);
+  k.choices = "on|off";
+  k.set = [name, ref](Scene& s, const std::string& text, const Origin& at) {
+    if (text == "on" || text == "yes" || text == "true") {
+      ref(s) = true;
+    } else if (text == "off" || text == "no" || text == "false") {
+      ref(s) = false;
+    } else {
+      throw error_at(at, name, "'" + text + "' is not on or off");
+    }
+  };
+  k.get = [ref](const Scene& s) { return std::string(ref(s) ? "on" : "off"); };
+  return k;
+}
+
+template <class Ref>
+Key text(std::string name, std::string group, std::string def, std::string meaning, Ref ref) {
+  Key k;
+  k.name = name;
+  k.group = std::move(group);
+  k.kind = Kind::text;
+  k.default_text = std::move(def);
+  k.meaning = std::move(meaning);
+  k.set = [ref](Scene& s, const std::string& value, const Origin&) { ref(s) = value; };
+  k.get = [ref](const Scene& s) { return ref(s); };
+  return k;
+}
+
+template <class Enum, class Ref>
+Key choice(std::string name, std::string group, std::vector<std::pair<std::string, Enum>> options, std::string def,
+           std::string meaning, Ref ref) {
+  Key k;
+  k.name = name;
+  k.group = std::move(group);
+  k.kind = Kind::choice;
+  k.default_text = std::move(def);
+  k.meaning = std::move(meaning);
+  for (const auto& [word, value] : options) k.choices += (k.choices.empty() ? "" : "|") + word;
+  k.set = [name, options, ref](Scene& s, const std::string& value, const Origin& at) {
+    for (const auto& [word, e] : options) {
+      if (word == value) {
+        ref(s) = e;
+        return;
+      }
+    }
+    std::string list;
+    for (const auto& [word, e] : options) list += (list.empty() ? "" : ", ") + word;
+    throw error_at(at, name, "'" + value + "' is not one of " + list);
+  };
+  k.get = [options, ref](const Scene& s) {
+    for (const auto& [word, e] : options)
+      if (e == ref(s)) return word;
+    return std::string("?");
+  };
+  return k;
+}
+
+#define FIELD(member) [](auto& s) -> auto& { return s.member; }
+
+const std::vector<Key>& keys() {
+  static const std::vector<Key> table = [] {
+    using D = Dimension;
+    std::vector<Key> k;
+    // Impact
+    k.push_back(quantity("velocity", "impact", D::speed, positive(), "1000 m/s",
+                         "each body moves at this speed toward the impact plane y = 0 (target down, flyer up)",
+                         FIELD(velocity)));
+    k.push_back(quantity("porosity", "impact", D::none, closed(1.0, 10.0), "1.03",
+                         "delta = rho_solid / rho_porous of both bodies; 1 means solid, no voids", FIELD(porosity)));
+    k.push_back(quantity("void_radius", "impact", D::length, positive(), "50 um", "mean void radius",
+                         FIELD(void_radius)));
+    k.push_back(quantity("void_radius_spread", "impact", D::length, non_negative(), "0 m",
+                         "void radii are uniform in [void_radius - spread, void_radius + spread]",
+                         FIELD(void_radius_spread)));
+    k.push_back(quantity("void_min_gap", "impact", D::length, non_negative(), "0 m",
+                         "smallest ligament kept between two voids (when void_overlap = off)", FIELD(void_min_gap)));
+    k.push_back(flag("void_overlap", "impact", "off", "allow voids to overlap", FIELD(void_overlap)));
+    k.push_back(flag("flyer_mirror", "impact", "on",
+                     "the flyer is the mirror image of the target about y = 0, as in the paper; off: its own voids",
+                     FIELD(flyer_mirror)));
+    k.push_back(quantity("target_height", "impact", D::length, positive(), "5 mm", "target (upper body) height",
+                         FIELD(target_height)));
+    k.push_back(quantity("flyer_height", "impact", D::length, positive(), "5 mm", "flyer (lower body) height",
+                         FIELD(flyer_height)));
+    k.push_back(quantity("width", "impact", D::length, positive(), "2 mm", "width of the periodic column (x)",
+                         FIELD(width)));
+    // Discretisation
+    k.push_back(quantity("cell_size", "numerics", D::length, positive(), "20 um", "background grid cell size h",
+                         FIELD(cell_size)));
+    k.push_back(integer("particles_per_cell", "numerics", closed(1, 8), "2",
+                        "material points per cell in each direction", FIELD(particles_per_cell)));
+    k.push_back(quantity("grid_margin", "numerics", D::length, Range{-kInf, kInf, false, false}, "auto",
+                         "empty grid kept beyond each free surface; auto = 8 cells + 2 velocity end_time",
+                         FIELD(grid_margin)));
+    k.push_back(quantity("end_time", "numerics", D::time, positive(), "1 us", "simulated time to run",
+                         FIELD(end_time)));
+    k.push_back(quantity("cfl", "numerics", D::none, open(0.0, 1.0), "0.3",
+                         "time step = cfl h / (fastest signal: sound speed + viscous speed + particle speed)",
+                         FIELD(cfl)));
+    k.push_back(choice<UpdateScheme>("update_scheme", "numerics",
+                                     {{"musl", UpdateScheme::musl}, {"usl", UpdateScheme::usl}}, "musl",
+                                     "musl: stress from the time-centred re-mapped velocity (conserves energy); usl: classic update stress last",
+                                     FIELD(update_scheme)));
+    k.push_back(choice<ShapeFunction>(
+        "shape_function", "numerics",
+        {{"bilinear", ShapeFunction::bilinear}, {"gimp", ShapeFunction::gimp}, {"bspline2", ShapeFunction::bspline2}},
+        "bspline2",
+        "bspline2 and gimp (3 x 3 nodes) remove most grid-crossing noise; bilinear: the paper's 4-node cells",
+        FIELD(shape_function)));
+    k.push_back(quantity("av_linear", "numerics", D::none, non_negative(), "0.2",
+                         "linear artificial viscosity coefficient A1", FIELD(av_linear)));
+    k.push_back(quantity("av_quadratic", "numerics", D::none, non_negative(), "2",
+                         "quadratic artificial viscosity coefficient A2", FIELD(av_quadratic)));
+    k.push_back(integer("seed", "numerics", closed(0, 9.0e18), "1", "random seed of the void layout",
+                        FIELD(seed)));
+    // Effects
+    k.push_back(flag("plasticity", "effects", "on",
+                     "von Mises strength with mixed hardening; off: hydrodynamic, no deviatoric stress",
+                     FIELD(effects.plasticity)));
+    k.push_back(flag("thermal", "effects", "on",
+                     "the paper's temperature T = T_H(V) + (E - E_H)/c_v; off: no temperature is computed",
+                     FIELD(effects.thermal)));
+    k.push_back(flag("artificial_viscosity", "effects", "on", "shock-capturing bulk viscosity in compression",
+                     FIELD(effects.artificial_viscosity)));
+    // Material (the paper's aluminium)
+    k.push_back(quantity("density", "material", D::density, positive(), "2700 kg/m3", "solid reference density rho0",
+                         FIELD(material.density)));
+    k.push_back(quantity("youngs_modulus", "material", D::pressure, positive(), "69 GPa",
+                         "Young's modulus E (with nu gives the shear modulus)", FIELD(material.youngs_modulus)));
+    k.push_back(quantity("poisson_ratio", "material", D::none, open(-1.0, 0.5), "0.33", "Poisson's ratio nu",
+                         FIELD(material.poisson_ratio)));
+    k.push_back(quantity("yield_stress", "material", D::pressure, positive(), "120 MPa",
+                         "initial yield stress sigma_Y0", FIELD(material.yield_stress)));
+    k.push_back(quantity("tangent_modulus", "material", D::pressure, non_negative(), "384 MPa",
+                         "tangent modulus E_tan past yield", FIELD(material.tangent_modulus)));
+    k.push_back(quantity("hardening_beta", "material", D::none, closed(0.0, 1.0), "1",
+                         "share of isotropic hardening: 1 isotropic, 0 kinematic", FIELD(material.hardening_beta)));
+    k.push_back(quantity("sound_speed", "material", D::speed, positive(), "5350 m/s",
+                         "bulk sound speed c0 (Us = c0 + s up)", FIELD(material.sound_speed)));
+    k.push_back(quantity("hugoniot_slope", "material", D::none, closed(1.0, 5.0), "1.34",
+                         "Us-up slope s (the paper's lambda)", FIELD(material.hugoniot_slope)));
+    k.push_back(quantity("gruneisen_gamma", "material", D::none, closed(0.0, 10.0), "1.96",
+                         "Grüneisen gamma0 at rho0; gamma rho is held constant", FIELD(material.gruneisen_gamma)));
+    k.push_back(quantity("specific_heat", "material", D::specific_heat, positive(), "880 J/(kg K)",
+                         "specific heat c_v", FIELD(material.specific_heat)));
+    k.push_back(quantity("thermal_conductivity", "material", D::conductivity, non_negative(), "237 W/(m K)",
+                         "thermal conductivity k (recorded; heat conduction is not modelled yet)",
+                         FIELD(material.thermal_conductivity)));
+    k.push_back(quantity("initial_temperature", "material", D::temperature, positive(), "300 K",
+                         "initial temperature T0", FIELD(material.initial_temperature)));
+    // Output
+    k.push_back(text("output_dir", "output", "output", "directory for regions.csv, snapshots and the summary",
+                     FIELD(output_dir)));
+    k.push_back(quantity("sample_interval", "output", D::time, positive(), "10 ns",
+                         "simulated time between rows of regions.csv and conservation.csv", FIELD(sample_interval)));
+    k.push_back(quantity("snapshot_interval", "output", D::time, non_negative(), "100 ns",
+                         "simulated time between HDF5 snapshots; 0: only the first and the last",
+                         FIELD(snapshot_interval)));
+    return k;
+  }();
+  return table;
+}
+#undef FIELD
+
+const Key* find_key(const std::string& name) {
+  for (const Key& k : keys())
+    if (k.name == name) return &k;
+  return nullptr;
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string did_you_mean(const std::string& name) {
+  const Key* best = nullptr;
+  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  for (const Key& k : keys()) {
+    const std::size_t d = edit_distance(name, k.name);
+    if (d < best_d) {
+      best_d = d;
+      best = &k;
+    }
+  }
+  if (best && best_d <= std::max<std::size_t>(2, name.size() / 3)) return "; did you mean '" + best->name + "'?";
+  return "";
+}
+
+bool valid_utf8(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    std::size_t n = 0;
+    if (c < 0x80) n = 0;
+    else if ((c & 0xE0) == 0xC0 && c >= 0xC2) n = 1;
+    else if ((c & 0xF0) == 0xE0) n = 2;
+    else if ((c & 0xF8) == 0xF0 && c <= 0xF4) n = 3;
+    else return false;
+    if (n > 0 && i + n >= s.size()) return false;  // truncated sequence
+    for (std::size_t k = 1; k <= n; ++k)
+      if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return false;
+    i += n + 1;
+  }
+  return true;
+}
+
+bool valid_key_name(const std::string& key) {
+  if (key.empty()) return false;
+  return std::all_of(key.begin(), key.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-';
+  });
+}
+
+struct Entry {
+  std::string key, value;
+  Origin at;
+};
+
+// A region key: region.NAME = bottom Y1 H | top H | band Y1 Y2.
+RegionSpec parse_region(const Entry& e) {
+  RegionSpec r;
+  r.name = e.key.substr(std::string("region.").size());
+  if (r.name.empty()) throw error_at(e.at, e.key, "a region needs a name: region.NAME = ...");
+  std::istringstream words(e.value);
+  std::vector<std::string> w;
+  for (std::string t; words >> t;) w.push_back(t);
+  // Rejoin "100 um" style tokens: a word that is only a unit belongs to the number before it.
+  std::vector<std::string> args;
+  for (std::size_t i = 1; i < w.size(); ++i) {
+    const bool starts_numeric = std::isdigit(static_cast<unsigned char>(w[i][0])) || w[i][0] == '.' ||
+                                w[i][0] == '-' || w[i][0] == '+';
+    if (!starts_numeric && !args.empty()) args.back() += " " + w[i];
+    else args.push_back(w[i]);
+  }
+  auto length = [&](const std::string& t) {
+    try {
+      return parse_quantity(t, Dimension::length);
+    } catch (const std::invalid_argument& ex) {
+      throw error_at(e.at, e.key, ex.what());
+    }
+  };
+  const std::string kind = w.empty() ? "" : w[0];
+  if (kind == "bottom" && args.size() == 2) {
+    r.kind = RegionSpec::Kind::bottom;
+    r.a = length(args[0]);
+    r.b = length(args[1]);
+    if (!(r.b > 0)) throw error_at(e.at, e.key, "the height must be > 0");
+  } else if (kind == "top" && args.size() == 1) {
+    r.kind = RegionSpec::Kind::top;
+    r.b = length(args[0]);
+    if (!(r.b > 0)) throw error_at(e.at, e.key, "the height must be > 0");
+  } else if (kind == "band" && args.size() == 2) {
+    r.kind = RegionSpec::Kind::band;
+    r.a = length(args[0]);
+    r.b = length(args[1]);
+    if (!(r.b > r.a)) throw error_at(e.at, e.key, "a band needs y2 > y1");
+  } else {
+    throw error_at(e.at, e.key, "expected 'bottom Y1 HEIGHT', 'top HEIGHT' or 'band Y1 Y2', got '" + e.value + "'");
+  }
+  return r;
+}
+
+// Lines of a scene file as entries; syntax errors name the file and line.
+std::vector<Entry> read_entries(const std::string& text, const std::string& name) {
+  std::vector<Entry> out;
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    const Origin at{name + ":" + std::to_string(number)};
+    if (!valid_utf8(line)) throw SceneError(at.where + ": the line has bytes that are not UTF-8 text");
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    line = trim(line);
+    if (line.empty()) continue;
+    const auto eq = line.find('=');
+    if (eq == std::string::npos)
+      throw SceneError(at.where + ": expected 'key = value', got '" + line + "'");
+    Entry e{trim(line.substr(0, eq)), trim(line.substr(eq + 1)), at};
+    if (!valid_key_name(e.key)) throw SceneError(at.where + ": '" + e.key + "' is not a key name");
+    if (e.value.empty()) throw error_at(at, e.key, "missing value");
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+Entry parse_override(const std::string& arg, int index) {
+  const Origin at{"--set #" + std::to_string(index) + " (" + arg + ")"};
+  const auto eq = arg.find('=');
+  if (eq == std::string::npos) throw SceneError(at.where + ": expected --set key=value");
+  Entry e{trim(arg.substr(0, eq)), trim(arg.substr(eq + 1)), at};
+  if (!valid_key_name(e.key)) throw SceneError(at.where + ": '" + e.key + "' is not a key name");
+  if (e.value.empty()) throw error_at(at, e.key, "missing value");
+  if (!valid_utf8(e.value)) throw error_at(at, e.key, "the value has bytes that are not UTF-8 text");
+  return e;
+}
+
+bool is_multiple(double length, double unit) {
+  const double n = std::round(length / unit);
+  return n >= 1 && std::abs(n * unit - length) <= 1e-9 * length;
+}
+
+// Checks that involve more than one key. `at` finds where a key was set (or "defaults").
+void check_consistency(const Scene& s, const std::function<Origin(const std::string&)>& at) {
+  auto fail = [&](const std::string& key, const std::string& msg) { throw error_at(at(key), key, msg); };
+  const double a = s.particle_spacing();
+  if (!is_multiple(s.width, s.cell_size))
+    fail("width", "must be a whole number of cells (cell_size = " + format_number(s.cell_size) + " m)");
+  if (!is_multiple(s.target_height, a))
+    fail("target_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
+                              format_number(a) + " m)");
+  if (!is_multiple(s.flyer_height, a))
+    fail("flyer_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
+                             format_number(a) + " m)");
+  if (s.material.tangent_modulus >= s.material.youngs_modulus)
+    fail("tangent_modulus", "must be smaller than youngs_modulus");
+  if (s.porosity > 1.0) {
+    if (s.void_radius_spread >= s.void_radius) fail("void_radius_spread", "must be smaller than void_radius");
+    const double r_min = s.void_radius - s.void_radius_spread;
+    const double r_max = s.void_radius + s.void_radius_spread;
+    if (2.0 * r_min < a)
+      fail("void_radius", "voids smaller than the material-point spacing (" + format_number(a) +
+                              " m) cannot be cut from the points; refine cell_size or use larger voids");
+    if (2.0 * r_max + s.void_min_gap > std::min({s.width, s.target_height, s.flyer_height}))
+      fail("void_radius", "voids that cannot fit: a void of diameter " + format_number(2.0 * r_max) +
+                              " m does not fit in the bodies");
+    if (s.flyer_mirror && std::abs(s.flyer_height - s.target_height) > 1e-12 * s.target_height)
+      fail("flyer_mirror", "a mirrored flyer needs flyer_height = target_height");
+  }
+  if (s.grid_margin >= 0.0 && s.grid_margin < 2.0 * s.cell_size)
+    fail("grid_margin", "must be at least two cells (or 'auto')");
+  // Sizes that would not fit in memory are refused here, before anything is allocated.
+  const double points = (s.target_height + s.flyer_height) * s.width / (a * a);
+  if (!(points <= 2.0e9))
+    fail("cell_size", "the scene would need " + format_number(std::round(points)) +
+                          " material points; at most 2e9 are supported");
+  const double steps_estimate = s.end_time * (s.material.sound_speed + s.velocity) / (s.cfl * s.cell_size);
+  if (!(steps_estimate <= 1e12)) fail("end_time", "the run would take more than 1e12 time steps");
+}
+
+}  // namespace
+
+double Scene::derived_grid_margin() const {
+  if (grid_margin >= 0.0) return grid_margin;
+  return 8.0 * cell_size + 2.0 * velocity * end_time;
+}
+
+std::vector<RegionSpec> paper_regions() {
+  using K = RegionSpec::Kind;
+  return {
+      {"B800", K::bottom, 100e-6, 800e-6}, {"B400", K::bottom, 100e-6, 400e-6}, {"B100", K::bottom, 100e-6, 100e-6},
+      {"T800", K::top, 0.0, 800e-6},       {"T400", K::top, 0.0, 400e-6},       {"T100", K::top, 0.0, 100e-6},
+  };
+}
+
+Scene parse_scene(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+  std::vector<Entry> entries = read_entries(text, name);
+
+  // One place per key: repeated keys in the file are errors, --set replaces the file's value.
+  std::map<std::string, Entry> by_key;
+  for (Entry& e : entries) {
+    if (auto it = by_key.find(e.key); it != by_key.end())
+      throw error_at(e.at, e.key, "repeated key (first set at " + it->second.at.where + ")");
+    by_key.emplace(e.key, std::move(e));
+  }
+  std::map<std::string, std::string> overridden;
+  for (std::size_t i = 0; i < overrides.size(); ++i) {
+    Entry e = parse_override(overrides[i], static_cast<int>(i + 1));
+    if (auto it = overridden.find(e.key); it != overridden.end())
+      throw error_at(e.at, e.key, "set twice on the command line");
+    overridden[e.key] = e.value;
+    by_key[e.key] = std::move(e);
+  }
+
+  Scene scene;
+  scene.source = name;
+  for (const Key& k : keys()) {
+    if (k.default_text == "auto") continue;  // grid_margin: the sentinel in Scene stands for auto
+    k.set(scene, k.default_text, Origin{"default"});
+  }
+  std::vector<RegionSpec> regions;
+  for (const auto& [key, e] : by_key) {
+    if (key.rfind("region.", 0) == 0) {
+      regions.push_back(parse_region(e));
+      continue;
+    }
+    const Key* k = find_key(key);
+    if (!k) throw error_at(e.at, key, "unknown key" + did_you_mean(key));
+    if (k->default_text == "auto" && e.value == "auto") continue;
+    k->set(scene, e.value, e.at);
+  }
+  // Regions in the order the file lists them, not alphabetical.
+  std::sort(regions.begin(), regions.end(), [&](const RegionSpec& x, const RegionSpec& y) {
+    const auto& ax = by_key.at("region." + x.name).at.where;
+    const auto& ay = by_key.at("region." + y.name).at.where;
+    const auto line = [](const std::string& w) {
+      const auto c = w.rfind(':');
+      return c == std::string::npos ? 1 << 30 : std::atoi(w.c_str() + c + 1);
+    };
+    return line(ax) < line(ay);
+  });
+  scene.regions = regions.empty() ? paper_regions() : regions;
+
+  for (const auto& [key, e] : by_key) scene.origin[key] = e.at.where;
+  check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; });
+  return scene;
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw SceneError(path + ": is a directory, not a scene file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open the scene file");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw SceneError(path + ": cannot read the scene file");
+  const std::string text = buffer.str();
+  if (text.find('\0') != std::string::npos) throw SceneError(path + ": is not a text file (it holds NUL bytes)");
+  if (trim(text).empty()) throw SceneError(path + ": the scene file is empty; an empty scene is most likely a mistake "
+                                                  "(write at least one key, e.g. 'velocity = 1000 m/s')");
+  return parse_scene(text, path, overrides);
+}
+
+std::string resolved_scene(const Scene& scene) {
+  std::string out;
+  for (const Key& k : keys()) {
+    std::string value = k.get(scene);
+    if (k.name == "grid_margin") value = format_number(scene.derived_grid_margin()) + " m";
+    out += k.name + " = " + value + "\n";
+  }
+  for (const RegionSpec& r : scene.regions) {
+    out += "region." + r.name + " = ";
+    switch (r.kind) {
+      case RegionSpec::Kind::bottom: out += "bottom " + format_number(r.a) + " m " + format_number(r.b) + " m"; break;
+      case RegionSpec::Kind::top: out += "top " + format_number(r.b) + " m"; break;
+      case RegionSpec::Kind::band: out += "band " + format_number(r.a) + " m " + format_number(r.b) + " m"; break;
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string key_reference_markdown() {
+  std::string out = "| key | unit | default | meaning |\n|---|---|---|---|\n";
+  for (const Key& k : keys()) {
+    std::string unit;
+    switch (k.kind) {
+      case Kind::quantity: unit = k.dim == Dimension::none ? "-" : std::string(si_unit(k.dim)); break;
+      case Kind::integer: unit = "-"; break;
+      case Kind::flag:
+      case Kind::choice: unit = k.choices; break;
+      case Kind::text: unit = "path"; break;
+    }
+    out += "| `" + k.name + "` | " + unit + " | " + k.default_text + " | " + k.meaning + " |\n";
+  }
+  out += "| `region.NAME` | m | B800, B400, B100, T800, T400, T100 | `bottom Y1 H`, `top H` or `band Y1 Y2`; "
+         "a scene that names regions replaces the defaults |\n";
+  return out;
+}
+
+}  // namespace mpmshock

@@ -1,0 +1,164 @@
+#include "mpmshock/units.hpp"
+
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+namespace mpmshock {
+namespace {
+
+struct Unit {
+  std::string_view name;
+  Dimension dim;
+  double to_si;
+};
+
+// Spellings a physicist writes. Order matters only for accepted_units() listings.
+constexpr std::array<Unit, 33> kUnits{{
+    {"m", Dimension::length, 1.0},
+    {"cm", Dimension::length, 1e-2},
+    {"mm", Dimension::length, 1e-3},
+    {"um", Dimension::length, 1e-6},
+    {"µm", Dimension::length, 1e-6},
+    {"nm", Dimension::length, 1e-9},
+    {"s", Dimension::time, 1.0},
+    {"ms", Dimension::time, 1e-3},
+    {"us", Dimension::time, 1e-6},
+    {"µs", Dimension::time, 1e-6},
+    {"ns", Dimension::time, 1e-9},
+    {"ps", Dimension::time, 1e-12},
+    {"m/s", Dimension::speed, 1.0},
+    {"km/s", Dimension::speed, 1e3},
+    {"mm/us", Dimension::speed, 1e3},
+    {"um/ns", Dimension::speed, 1e3},
+    {"Pa", Dimension::pressure, 1.0},
+    {"kPa", Dimension::pressure, 1e3},
+    {"MPa", Dimension::pressure, 1e6},
+    {"GPa", Dimension::pressure, 1e9},
+    {"bar", Dimension::pressure, 1e5},
+    {"kbar", Dimension::pressure, 1e8},
+    {"kg/m3", Dimension::density, 1.0},
+    {"kg/m^3", Dimension::density, 1.0},
+    {"g/cm3", Dimension::density, 1e3},
+    {"g/cm^3", Dimension::density, 1e3},
+    {"g/cc", Dimension::density, 1e3},
+    {"K", Dimension::temperature, 1.0},
+    {"J/(kg K)", Dimension::specific_heat, 1.0},
+    {"J/kg/K", Dimension::specific_heat, 1.0},
+    {"J/(kg*K)", Dimension::specific_heat, 1.0},
+    {"W/(m K)", Dimension::conductivity, 1.0},
+    {"W/m/K", Dimension::conductivity, 1.0},
+}};
+
+std::string_view dimension_word(Dimension dim) {
+  switch (dim) {
+    case Dimension::none: return "a pure number";
+    case Dimension::length: return "a length";
+    case Dimension::time: return "a time";
+    case Dimension::speed: return "a speed";
+    case Dimension::pressure: return "a pressure";
+    case Dimension::density: return "a density";
+    case Dimension::temperature: return "a temperature";
+    case Dimension::specific_heat: return "a specific heat";
+    case Dimension::conductivity: return "a thermal conductivity";
+  }
+  return "?";
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+// Splits "12.5mm" / "12.5 mm" into the number and the unit text.
+std::pair<std::string_view, std::string_view> split_number_unit(std::string_view text) {
+  std::size_t i = 0;
+  auto digit = [&](std::size_t k) { return k < text.size() && std::isdigit(static_cast<unsigned char>(text[k])); };
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  while (digit(i)) ++i;
+  if (i < text.size() && text[i] == '.') ++i;
+  while (digit(i)) ++i;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    std::size_t k = i + 1;
+    if (k < text.size() && (text[k] == '+' || text[k] == '-')) ++k;
+    if (digit(k)) {
+      i = k;
+      while (digit(i)) ++i;
+    }
+  }
+  return {text.substr(0, i), trim(text.substr(i))};
+}
+
+}  // namespace
+
+std::string_view si_unit(Dimension dim) {
+  switch (dim) {
+    case Dimension::none: return "";
+    case Dimension::length: return "m";
+    case Dimension::time: return "s";
+    case Dimension::speed: return "m/s";
+    case Dimension::pressure: return "Pa";
+    case Dimension::density: return "kg/m3";
+    case Dimension::temperature: return "K";
+    case Dimension::specific_heat: return "J/(kg K)";
+    case Dimension::conductivity: return "W/(m K)";
+  }
+  return "";
+}
+
+std::string accepted_units(Dimension dim) {
+  std::string out;
+  for (const Unit& u : kUnits) {
+    if (u.dim != dim) continue;
+    if (!out.empty()) out += ", ";
+    out += u.name;
+  }
+  return out.empty() ? std::string("no unit") : out;
+}
+
+double parse_number(std::string_view text) {
+  text = trim(text);
+  if (text.empty()) throw std::invalid_argument("missing value");
+  auto [number, rest] = split_number_unit(text);
+  if (number.empty() || number == "+" || number == "-" || number == "." || !rest.empty())
+    throw std::invalid_argument("'" + std::string(text) + "' is not a number");
+  if (number.front() == '+') number.remove_prefix(1);
+  double value = 0.0;
+  auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
+  if (ec == std::errc::result_out_of_range || (ec == std::errc() && !std::isfinite(value)))
+    throw std::invalid_argument("'" + std::string(text) + "' is out of the range of a double");
+  if (ec != std::errc() || ptr != number.data() + number.size())
+    throw std::invalid_argument("'" + std::string(text) + "' is not a number");
+  return value;
+}
+
+double parse_quantity(std::string_view text, Dimension dim) {
+  text = trim(text);
+  if (text.empty()) throw std::invalid_argument("missing value");
+  auto [number, unit] = split_number_unit(text);
+  if (number.empty() || number == "+" || number == "-")
+    throw std::invalid_argument("'" + std::string(text) + "' is not a number");
+  const double value = parse_number(number);
+  if (unit.empty()) return value;
+  for (const Unit& u : kUnits) {
+    if (u.name != unit) continue;
+    if (u.dim != dim) {
+      std::string msg = "unit '" + std::string(unit) + "' is " + std::string(dimension_word(u.dim)) +
+                        ", but this key takes " + std::string(dimension_word(dim));
+      if (dim != Dimension::none) msg += " (" + accepted_units(dim) + ")";
+      throw std::invalid_argument(msg);
+    }
+    const double si = value * u.to_si;
+    if (!std::isfinite(si)) throw std::invalid_argument("'" + std::string(text) + "' overflows in SI units");
+    return si;
+  }
+  std::string msg = "unknown unit '" + std::string(unit) + "'";
+  msg += dim == Dimension::none ? std::string("; this key takes a pure number")
+                                : "; this key takes " + std::string(dimension_word(dim)) + " in " + accepted_units(dim);
+  throw std::invalid_argument(msg);
+}
+
+}  // namespace mpmshock
