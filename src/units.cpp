@@ -9,47 +9,49 @@
 namespace mpmshock {
 namespace {
 
+// value_si = value * multiply / divide. Both factors are exact powers of ten, so the result is the
+// correctly rounded SI value: "50 um" gives exactly the double 50e-6.
 struct Unit {
   std::string_view name;
   Dimension dim;
-  double to_si;
+  double multiply, divide;
 };
 
 // Spellings a physicist writes. Order matters only for accepted_units() listings.
 constexpr std::array<Unit, 33> kUnits{{
-    {"m", Dimension::length, 1.0},
-    {"cm", Dimension::length, 1e-2},
-    {"mm", Dimension::length, 1e-3},
-    {"um", Dimension::length, 1e-6},
-    {"µm", Dimension::length, 1e-6},
-    {"nm", Dimension::length, 1e-9},
-    {"s", Dimension::time, 1.0},
-    {"ms", Dimension::time, 1e-3},
-    {"us", Dimension::time, 1e-6},
-    {"µs", Dimension::time, 1e-6},
-    {"ns", Dimension::time, 1e-9},
-    {"ps", Dimension::time, 1e-12},
-    {"m/s", Dimension::speed, 1.0},
-    {"km/s", Dimension::speed, 1e3},
-    {"mm/us", Dimension::speed, 1e3},
-    {"um/ns", Dimension::speed, 1e3},
-    {"Pa", Dimension::pressure, 1.0},
-    {"kPa", Dimension::pressure, 1e3},
-    {"MPa", Dimension::pressure, 1e6},
-    {"GPa", Dimension::pressure, 1e9},
-    {"bar", Dimension::pressure, 1e5},
-    {"kbar", Dimension::pressure, 1e8},
-    {"kg/m3", Dimension::density, 1.0},
-    {"kg/m^3", Dimension::density, 1.0},
-    {"g/cm3", Dimension::density, 1e3},
-    {"g/cm^3", Dimension::density, 1e3},
-    {"g/cc", Dimension::density, 1e3},
-    {"K", Dimension::temperature, 1.0},
-    {"J/(kg K)", Dimension::specific_heat, 1.0},
-    {"J/kg/K", Dimension::specific_heat, 1.0},
-    {"J/(kg*K)", Dimension::specific_heat, 1.0},
-    {"W/(m K)", Dimension::conductivity, 1.0},
-    {"W/m/K", Dimension::conductivity, 1.0},
+    {"m", Dimension::length, 1, 1},
+    {"cm", Dimension::length, 1, 1e2},
+    {"mm", Dimension::length, 1, 1e3},
+    {"um", Dimension::length, 1, 1e6},
+    {"µm", Dimension::length, 1, 1e6},
+    {"nm", Dimension::length, 1, 1e9},
+    {"s", Dimension::time, 1, 1},
+    {"ms", Dimension::time, 1, 1e3},
+    {"us", Dimension::time, 1, 1e6},
+    {"µs", Dimension::time, 1, 1e6},
+    {"ns", Dimension::time, 1, 1e9},
+    {"ps", Dimension::time, 1, 1e12},
+    {"m/s", Dimension::speed, 1, 1},
+    {"km/s", Dimension::speed, 1e3, 1},
+    {"mm/us", Dimension::speed, 1e3, 1},
+    {"um/ns", Dimension::speed, 1e3, 1},
+    {"Pa", Dimension::pressure, 1, 1},
+    {"kPa", Dimension::pressure, 1e3, 1},
+    {"MPa", Dimension::pressure, 1e6, 1},
+    {"GPa", Dimension::pressure, 1e9, 1},
+    {"bar", Dimension::pressure, 1e5, 1},
+    {"kbar", Dimension::pressure, 1e8, 1},
+    {"kg/m3", Dimension::density, 1, 1},
+    {"kg/m^3", Dimension::density, 1, 1},
+    {"g/cm3", Dimension::density, 1e3, 1},
+    {"g/cm^3", Dimension::density, 1e3, 1},
+    {"g/cc", Dimension::density, 1e3, 1},
+    {"K", Dimension::temperature, 1, 1},
+    {"J/(kg K)", Dimension::specific_heat, 1, 1},
+    {"J/kg/K", Dimension::specific_heat, 1, 1},
+    {"J/(kg*K)", Dimension::specific_heat, 1, 1},
+    {"W/(m K)", Dimension::conductivity, 1, 1},
+    {"W/m/K", Dimension::conductivity, 1, 1},
 }};
 
 std::string_view dimension_word(Dimension dim) {
@@ -151,7 +153,7 @@ double parse_quantity(std::string_view text, Dimension dim) {
       if (dim != Dimension::none) msg += " (" + accepted_units(dim) + ")";
       throw std::invalid_argument(msg);
     }
-    const double si = value * u.to_si;
+    const double si = u.divide == 1 ? value * u.multiply : value / u.divide;
     if (!std::isfinite(si)) throw std::invalid_argument("'" + std::string(text) + "' overflows in SI units");
     return si;
   }

@@ -1,0 +1,58 @@
+// Mie-Grüneisen on the linear Us-up Hugoniot: reference curve, continuity at V0, the jump states of
+// physics-notes section 3, gamma rho constant, and the sound speed.
+#include "check.hpp"
+#include "mpmshock/eos.hpp"
+
+using namespace mpmshock;
+
+int main() {
+  const Material al;  // the paper's aluminium
+  const MieGruneisen eos(al);
+  const double rho0 = 2700, c0 = 5350, s = 1.34, K0 = rho0 * c0 * c0;
+
+  // P_H = rho0 c0^2 eta / (1 - s eta)^2, written out independently.
+  for (double eta : {0.01, 0.1, 0.2, 0.3}) {
+    const double expect = K0 * eta / ((1 - s * eta) * (1 - s * eta));
+    CHECK_REL(eos.hugoniot_pressure(1 - eta), expect, 1e-14);
+    CHECK_REL(eos.hugoniot_energy(1 - eta), 0.5 * expect * eta / rho0, 1e-14);
+  }
+  // Tension branch P_H = rho0 c0^2 (1 - V/V0): negative, linear.
+  CHECK_REL(eos.hugoniot_pressure(1.02), -0.02 * K0, 1e-12);
+
+  // Continuity at V0: value and slope of both branches agree.
+  const double e = 1e-7;
+  CHECK_NEAR(eos.hugoniot_pressure(1.0), 0.0, 0.0);
+  CHECK_REL(eos.hugoniot_pressure(1 - e) / e, -eos.hugoniot_pressure(1 + e) / e, 1e-6);
+  CHECK_REL(eos.hugoniot_pressure_slope(1 - e), eos.hugoniot_pressure_slope(1 + e), 1e-6);
+  CHECK_REL(eos.hugoniot_pressure_slope(1.0), K0, 1e-14);
+
+  // Rankine-Hugoniot jump states (physics-notes section 3): at rho = rho0 Us / (Us - up) on the
+  // Hugoniot (E = E_H = up^2 / 2) the pressure is rho0 Us up.
+  const double table[3][3] = {{500, 8.127e9, 2944.6}, {1000, 18.063e9, 3174.5}, {2000, 43.362e9, 3595.5}};
+  for (const auto& row : table) {
+    const double up = row[0], Us = c0 + s * up;
+    const double J = (Us - up) / Us;
+    CHECK_REL(rho0 / J, row[2], 1e-4);
+    CHECK_REL(eos.hugoniot_energy(J), 0.5 * up * up, 1e-12);
+    CHECK_REL(eos.pressure(J, 0.5 * up * up), row[1], 1e-4);
+  }
+
+  // Off the Hugoniot: dP/dE = gamma / V = gamma0 rho0 at every volume (gamma rho constant).
+  for (double J : {0.7, 0.9, 1.0, 1.1}) {
+    const double dE = 1e4;
+    CHECK_REL((eos.pressure(J, 2e5 + dE) - eos.pressure(J, 2e5)) / dE, 1.96 * rho0, 1e-9);
+  }
+
+  // Bulk sound speed: c0 at the reference state; and c^2 = -V^2 (dP/dV)_S checked numerically
+  // along an isentrope dE = -P dV.
+  CHECK_REL(std::sqrt(eos.sound_speed_squared(1.0, 0.0)), c0, 1e-14);
+  for (double J : {0.8, 0.9, 0.95}) {
+    const double E = 3e5, P = eos.pressure(J, E), dJ = 1e-7;
+    const double V = J / rho0, dV = dJ / rho0;
+    const double P_plus = eos.pressure(J + dJ, E - P * dV), P_minus = eos.pressure(J - dJ, E + P * dV);
+    const double c2_numeric = -V * V * (P_plus - P_minus) / (2 * dV);
+    CHECK_REL(eos.sound_speed_squared(J, P), c2_numeric, 1e-5);
+  }
+  CHECK_REL(eos.limiting_compression(), 1 - 1 / s, 1e-15);
+  return check::result();
+}

@@ -1,0 +1,104 @@
+// The scene parser on good and bad input: units, defaults, overrides, regions, and errors that name
+// the file, the line and the key.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "check.hpp"
+#include "mpmshock/scene.hpp"
+
+using namespace mpmshock;
+
+static Scene parse(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  return parse_scene(text, "t.scene", overrides);
+}
+
+int main() {
+  // Defaults: the paper's aluminium and base case.
+  const Scene d = parse("velocity = 1000 m/s\n");
+  CHECK(d.material.youngs_modulus == 69e9 && d.material.yield_stress == 120e6 && d.material.density == 2700);
+  CHECK(d.porosity == 1.03 && d.void_radius == 50e-6 && d.width == 2e-3 && d.target_height == 5e-3);
+  CHECK(d.regions.size() == 6 && d.regions[0].name == "B800" && d.regions[5].name == "T100");
+  CHECK(d.effects.plasticity && d.effects.thermal && d.effects.artificial_viscosity);
+
+  // Units, comments, blank lines, attached units.
+  const Scene s = parse(
+      "# a comment\n\n"
+      "velocity = 2 km/s   # trailing comment\n"
+      "void_radius = 10um\n"
+      "cell_size = 5 um\n"
+      "width = 0.5 mm\n"
+      "target_height = 1.5 mm\nflyer_height = 1.5 mm\n"
+      "end_time = 0.4 us\n"
+      "density = 2.7 g/cm3\n"
+      "yield_stress = 0.12 GPa\n"
+      "specific_heat = 880 J/(kg K)\n"
+      "thermal_conductivity = 237 W/(m K)\n"
+      "porosity = 1.4\n"
+      "plasticity = off\n"
+      "output_dir = runs/a b\n"
+      "region.mid = band -100 um 100um\n"
+      "region.top = top 50 um\n");
+  CHECK_REL(s.velocity, 2000.0, 1e-15);
+  CHECK_REL(s.void_radius, 10e-6, 1e-15);
+  CHECK_REL(s.end_time, 0.4e-6, 1e-15);
+  CHECK_REL(s.material.density, 2700.0, 1e-15);
+  CHECK_REL(s.material.yield_stress, 120e6, 1e-15);
+  CHECK(!s.effects.plasticity);
+  CHECK(s.output_dir == "runs/a b");
+  CHECK(s.regions.size() == 2 && s.regions[0].name == "mid" && s.regions[0].kind == RegionSpec::Kind::band);
+  CHECK_REL(s.regions[0].a, -100e-6, 1e-12);
+  CHECK_REL(s.regions[0].b, 100e-6, 1e-12);
+  CHECK(s.regions[1].kind == RegionSpec::Kind::top);
+
+  // --set overrides the file's value and may add keys.
+  const Scene o = parse("velocity = 1000 m/s\n", {"velocity=500 m/s", "seed = 7"});
+  CHECK(o.velocity == 500.0 && o.seed == 7);
+
+  // The resolved scene reads back to the same scene.
+  const Scene back = parse(resolved_scene(s));
+  CHECK(back.velocity == s.velocity && back.void_radius == s.void_radius && back.porosity == s.porosity);
+  CHECK(back.regions.size() == 2 && back.regions[0].a == s.regions[0].a);
+  CHECK(resolved_scene(back) == resolved_scene(s));
+
+  // Errors name the file, the line and the key.
+  CHECK_THROWS_WITH(parse("\nvelocty = 1000 m/s\n"), "t.scene:2", "'velocty'", "unknown key", "did you mean 'velocity'");
+  CHECK_THROWS_WITH(parse("velocity = 1\nvelocity = 2\n"), "t.scene:2", "'velocity'", "repeated", "t.scene:1");
+  CHECK_THROWS_WITH(parse("velocity = fast\n"), "t.scene:1", "'velocity'", "not a number");
+  CHECK_THROWS_WITH(parse("velocity = 1000 furlongs\n"), "t.scene:1", "'velocity'", "unknown unit 'furlongs'");
+  CHECK_THROWS_WITH(parse("velocity = 1000 mm\n"), "'velocity'", "is a length", "speed");
+  CHECK_THROWS_WITH(parse("velocity =\n"), "t.scene:1", "'velocity'", "missing value");
+  CHECK_THROWS_WITH(parse("velocity 1000\n"), "t.scene:1", "expected 'key = value'");
+  CHECK_THROWS_WITH(parse("porosity = 0.9\n"), "t.scene:1", "'porosity'", "out of range", ">= 1");
+  CHECK_THROWS_WITH(parse("cell_size = -1 um\n"), "'cell_size'", "out of range");
+  CHECK_THROWS_WITH(parse("cfl = 1\n"), "'cfl'", "< 1");
+  CHECK_THROWS_WITH(parse("velocity = 1e999\n"), "'velocity'", "out of the range");
+  CHECK_THROWS_WITH(parse("particles_per_cell = 2.5\n"), "'particles_per_cell'", "whole number");
+  CHECK_THROWS_WITH(parse("plasticity = maybe\n"), "'plasticity'", "on or off");
+  CHECK_THROWS_WITH(parse("shape_function = cubic\n"), "'shape_function'", "bilinear", "bspline2");
+  CHECK_THROWS_WITH(parse("void_radius = 3 mm\n"), "'void_radius'", "cannot fit");
+  CHECK_THROWS_WITH(parse("width = 2.005 mm\n"), "'width'", "whole number of cells");
+  CHECK_THROWS_WITH(parse("region.x = sideways 1 um\n"), "t.scene:1", "'region.x'", "bottom Y1 HEIGHT");
+  CHECK_THROWS_WITH(parse("velocity = \xff\xfe\n"), "t.scene:1", "not UTF-8");
+  CHECK_THROWS_WITH(parse("cell_size = 1 nm\n"), "'cell_size'", "material points");
+  CHECK_THROWS_WITH(parse("velocity = 1\n", {"velocty=2"}), "--set #1", "unknown key", "did you mean 'velocity'");
+  CHECK_THROWS_WITH(parse("velocity = 1\n", {"velocity=2", "velocity=3"}), "--set #2", "set twice");
+  CHECK_THROWS_WITH(parse("velocity = 1\n", {"novalue"}), "--set #1", "key=value");
+  // A cross-key error found with a default value points at the default.
+  CHECK_THROWS_WITH(parse("target_height = 3 mm\n"), "'flyer_mirror'", "flyer_height");
+
+  // Files: missing, a directory, empty.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "mpmshock_test_scene";
+  fs::create_directories(dir);
+  CHECK_THROWS_WITH(load_scene((dir / "missing.scene").string()), "missing.scene", "cannot open");
+  CHECK_THROWS_WITH(load_scene(dir.string()), "is a directory");
+  std::ofstream((dir / "empty.scene").string()) << "  \n\n";
+  CHECK_THROWS_WITH(load_scene((dir / "empty.scene").string()), "empty.scene");
+  std::ofstream((dir / "good.scene").string()) << "velocity = 750 m/s\n";
+  CHECK(load_scene((dir / "good.scene").string()).velocity == 750.0);
+  std::ofstream((dir / "comments.scene").string()) << "# every key at its default\n";
+  CHECK(load_scene((dir / "comments.scene").string()).velocity == 1000.0);
+  fs::remove_all(dir);
+  return check::result();
+}
