@@ -47,16 +47,20 @@ bool is_run_output(const fs::path& p) {
   return name.rfind("snapshot_", 0) == 0 && (p.extension() == ".h5" || p.extension() == ".tmp");
 }
 
-void prepare_output_dir(const std::string& dir, bool force) {
+// Refusals that the user fixes in the scene name the output_dir key; failures of the disk are
+// runtime errors (exit code 4).
+void prepare_output_dir(const Scene& scene, bool force) {
+  const std::string& dir = scene.output_dir;
+  const std::string key = scene.where("output_dir") + ": key 'output_dir': ";
   std::error_code ec;
   if (fs::exists(dir, ec)) {
-    if (!fs::is_directory(dir, ec)) throw std::runtime_error("output_dir '" + dir + "' exists and is not a directory");
+    if (!fs::is_directory(dir, ec)) throw SceneError(key + "'" + dir + "' exists and is not a directory");
     std::vector<fs::path> earlier;
     for (const auto& entry : fs::directory_iterator(dir, ec))
       if (is_run_output(entry.path())) earlier.push_back(entry.path());
     if (!earlier.empty() && !force)
-      throw std::runtime_error("output_dir '" + dir + "' holds the outputs of an earlier run; pass --force to replace "
-                               "them, or choose another output_dir");
+      throw SceneError(key + "'" + dir + "' holds the outputs of an earlier run; pass --force to replace them, or " +
+                       "choose another output_dir");
     for (const fs::path& p : earlier) fs::remove(p, ec);
   } else {
     fs::create_directories(dir, ec);
@@ -187,7 +191,7 @@ std::string describe_result(const RunResult& r) {
 RunResult run_scene(const Scene& scene, const RunOptions& options) {
   InitialState initial = build_initial_state(scene);  // SceneError on voids that cannot fit
   const fs::path dir(scene.output_dir);
-  prepare_output_dir(scene.output_dir, options.force);
+  prepare_output_dir(scene, options.force);
 
   RunResult result;
   result.porosity = initial.porosity();

@@ -603,7 +603,12 @@ std::string key_reference_markdown() {
       case Kind::quantity: unit = k.dim == Dimension::none ? "-" : std::string(si_unit(k.dim)); break;
       case Kind::integer: unit = "-"; break;
       case Kind::flag:
-      case Kind::choice: unit = k.choices; break;
+      case Kind::choice: {
+        unit = k.choices;
+        for (char& c : unit)
+          if (c == '|') c = ',';
+        break;
+      }
       case Kind::text: unit = "path"; break;
     }
     out += "| `" + k.name + "` | " + unit + " | " + k.default_text + " | " + k.meaning + " |\n";

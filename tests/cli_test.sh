@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# The mpmshock command line: help and version, exit codes, errors that name the file, line and key,
+# nothing written on bad input, --check, --set, and refusal to overwrite an earlier run.
+# usage: cli_test.sh MPMSHOCK_BINARY TESTS_DATA_DIR
+set -u
+bin=$1
+data=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+failures=0
+
+fail() { echo "FAILED: $*" >&2; failures=$((failures + 1)); }
+
+# expect CODE PATTERN -- ARGS...: run mpmshock, check the exit code and that stdout+stderr match.
+expect() {
+  local code=$1 pattern=$2
+  shift 3
+  local out rc
+  out=$("$bin" "$@" 2>&1)
+  rc=$?
+  [ "$rc" -eq "$code" ] || fail "mpmshock $*: exit $rc, expected $code; output: $out"
+  echo "$out" | grep -qE -- "$pattern" || fail "mpmshock $*: output lacks /$pattern/: $out"
+}
+
+expect 0 "usage: mpmshock SCENE" -- --help
+expect 0 "^mpmshock [0-9]+\.[0-9]+\.[0-9]+" -- --version
+expect 0 "\| \`velocity\` \| m/s \|" -- --keys
+expect 2 "no scene file given" --
+expect 2 "unknown option '--frobnicate'" -- --frobnicate x.scene
+expect 2 "--threads needs a whole number" -- x.scene --threads zero
+expect 2 "missing.scene: cannot open" -- missing.scene
+
+printf 'velocity = 1000 m/s\nporosty = 1.1\noutput_dir = should_not_exist\n' > typo.scene
+expect 2 "typo.scene:2: key 'porosty': unknown key; did you mean 'porosity'\?" -- typo.scene
+[ -e should_not_exist ] && fail "a bad scene created its output_dir"
+
+printf 'velocity = 1000 m/s\nporosity = 0.5\n' > range.scene
+expect 2 "range.scene:2: key 'porosity': value 0.5 is out of range" -- range.scene
+expect 2 "--set #1 \(cfl=1.5\): key 'cfl'" -- range.scene --set cfl=1.5
+
+cp "$data/tiny_porous.scene" tiny.scene
+expect 0 "material points: [0-9]+" -- tiny.scene --check
+[ -e tiny_porous_out ] && fail "--check wrote output"
+
+expect 0 "porosity \(from material points\): 1\.19" -- tiny.scene --quiet --set end_time=20ns --set output_dir=run1
+for f in regions.csv conservation.csv summary.json scene.txt snapshot_00000.h5; do
+  [ -s "run1/$f" ] || fail "run1/$f missing or empty"
+done
+grep -q "^end_time = 2e-08 s$" run1/scene.txt || fail "--set end_time not in the resolved scene"
+cp run1/regions.csv before.csv
+expect 2 "key 'output_dir': 'run1' holds the outputs of an earlier run; pass --force" -- tiny.scene --set output_dir=run1
+cmp -s before.csv run1/regions.csv || fail "a refused run changed the earlier outputs"
+expect 0 "steps: " -- tiny.scene --quiet --force --set end_time=20ns --set output_dir=run1
+
+if [ "$failures" -eq 0 ]; then echo "all checks passed"; else echo "$failures check(s) failed"; exit 1; fi
