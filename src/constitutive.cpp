@@ -4,8 +4,9 @@
 
 namespace mpmshock {
 
-template <bool Plastic, bool Viscous>
+template <Strength S, bool Viscous>
 double update_point(PointState& st, const Model& model, double dt) {
+  constexpr bool Plastic = S != Strength::none;
   const MieGruneisen& eos = model.eos;
   const double rho0 = eos.rho0();
   const StrainRate D = strain_rate(st.Lxx, st.Lxy, st.Lyx, st.Lyy);
@@ -35,31 +36,32 @@ double update_point(PointState& st, const Model& model, double dt) {
   if constexpr (Plastic) {
     const VonMises& vm = model.von_mises;
     st.s = st.s + dt * ((2.0 * vm.shear_modulus) * D.deviator() + spin_rate(st.s, D.spin));
-    st.alpha = st.alpha + dt * spin_rate(st.alpha, D.spin);
-    st.eps_p += vm.return_map(st.s, st.alpha, st.sigma_y);
+    if constexpr (S == Strength::mixed) st.alpha = st.alpha + dt * spin_rate(st.alpha, D.spin);
+    vm.return_map(st.s, st.alpha, st.eps_p);
   }
 
   // Pressure from the new volume and energy; artificial viscosity from this step's compression rate.
-  st.P = eos.pressure(J, st.E);
+  const MieGruneisen::State eos_state = eos.state(J, st.E);
+  st.P = eos_state.pressure;
   if (!std::isfinite(st.E) || !std::isfinite(st.P)) return -1.0;
-  const double c2_bulk = std::max(eos.sound_speed_squared(J, st.P), 0.0);
-  st.q = 0.0;
-  if constexpr (Viscous) st.q = model.viscosity.pressure(rho, std::sqrt(c2_bulk), model.cell_size, D.trace());
-
-  // Fastest signal at this point: longitudinal sound speed, plus the viscous speed.
-  double c2 = c2_bulk;
+  const double c2_bulk = std::max(eos_state.sound_speed_squared, 0.0);
+  double c2 = c2_bulk;  // longitudinal: bulk plus shear
   if constexpr (Plastic) c2 += (4.0 / 3.0) * model.von_mises.shear_modulus / rho;
-  double signal = std::sqrt(c2);
-  if constexpr (Viscous) {
-    const double Q = model.viscosity.signal(std::sqrt(c2_bulk), model.cell_size, D.trace());
-    signal = Q + std::sqrt(Q * Q + c2);
+  if constexpr (!Viscous) {
+    st.q = 0.0;
+    return std::sqrt(c2);
+  } else {
+    const double c_bulk = std::sqrt(c2_bulk);
+    st.q = model.viscosity.pressure(rho, c_bulk, model.cell_size, D.trace());
+    // Fastest signal at this point: longitudinal sound speed plus the viscous speed.
+    const double Q = model.viscosity.signal(c_bulk, model.cell_size, D.trace());
+    return Q + std::sqrt(Q * Q + c2);
   }
-  return signal;
 }
 
 namespace {
 
-template <bool Plastic, bool Viscous>
+template <Strength S, bool Viscous>
 StressUpdateResult update_all(Particles& p, const Model& model, double dt) {
   double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};
@@ -67,14 +69,13 @@ StressUpdateResult update_all(Particles& p, const Model& model, double dt) {
 #pragma omp parallel for schedule(static) reduction(max : max_signal) reduction(min : first_bad)
   for (std::size_t q = 0; q < p.size(); ++q) {
     PointState st{p.Lxx[q], p.Lxy[q], p.Lyx[q], p.Lyy[q], p.Fxx[q], p.Fxy[q], p.Fyx[q], p.Fyy[q],
-                  p.energy[q], p.pressure[q], p.viscosity[q], {}, {}, 0.0, 0.0};
-    if constexpr (Plastic) {
+                  p.energy[q], p.pressure[q], p.viscosity[q], {}, {}, 0.0};
+    if constexpr (S != Strength::none) {
       st.s = {p.sxx[q], p.syy[q], p.sxy[q]};
-      st.alpha = {p.axx[q], p.ayy[q], p.axy[q]};
-      st.sigma_y = p.yield_stress[q];
       st.eps_p = p.plastic_strain[q];
     }
-    const double signal = update_point<Plastic, Viscous>(st, model, dt);
+    if constexpr (S == Strength::mixed) st.alpha = {p.axx[q], p.ayy[q], p.axy[q]};
+    const double signal = update_point<S, Viscous>(st, model, dt);
     p.Fxx[q] = st.Fxx;
     p.Fxy[q] = st.Fxy;
     p.Fyx[q] = st.Fyx;
@@ -82,15 +83,16 @@ StressUpdateResult update_all(Particles& p, const Model& model, double dt) {
     p.energy[q] = st.E;
     p.pressure[q] = st.P;
     p.viscosity[q] = st.q;
-    if constexpr (Plastic) {
+    if constexpr (S != Strength::none) {
       p.sxx[q] = st.s.xx;
       p.syy[q] = st.s.yy;
       p.sxy[q] = st.s.xy;
+      p.plastic_strain[q] = st.eps_p;
+    }
+    if constexpr (S == Strength::mixed) {
       p.axx[q] = st.alpha.xx;
       p.ayy[q] = st.alpha.yy;
       p.axy[q] = st.alpha.xy;
-      p.yield_stress[q] = st.sigma_y;
-      p.plastic_strain[q] = st.eps_p;
     }
     const double speed2 = p.vx[q] * p.vx[q] + p.vy[q] * p.vy[q];
     if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = q < first_bad ? q : first_bad;
@@ -101,9 +103,20 @@ StressUpdateResult update_all(Particles& p, const Model& model, double dt) {
 
 }  // namespace
 
-StressUpdate select_stress_update(bool plasticity, bool artificial_viscosity) {
-  if (plasticity) return artificial_viscosity ? update_all<true, true> : update_all<true, false>;
-  return artificial_viscosity ? update_all<false, true> : update_all<false, false>;
+StressUpdate select_stress_update(Strength strength, bool artificial_viscosity) {
+  switch (strength) {
+    case Strength::mixed:
+      return artificial_viscosity ? update_all<Strength::mixed, true> : update_all<Strength::mixed, false>;
+    case Strength::isotropic:
+      return artificial_viscosity ? update_all<Strength::isotropic, true> : update_all<Strength::isotropic, false>;
+    case Strength::none: break;
+  }
+  return artificial_viscosity ? update_all<Strength::none, true> : update_all<Strength::none, false>;
+}
+
+Strength strength_of(const Scene& scene) {
+  if (!scene.effects.plasticity) return Strength::none;
+  return scene.material.hardening_beta == 1.0 ? Strength::isotropic : Strength::mixed;
 }
 
 double initial_signal_speed(const Particles& p, const Model& model) {
@@ -118,9 +131,11 @@ double initial_signal_speed(const Particles& p, const Model& model) {
   return max_signal;
 }
 
-template double update_point<true, true>(PointState&, const Model&, double);
-template double update_point<true, false>(PointState&, const Model&, double);
-template double update_point<false, true>(PointState&, const Model&, double);
-template double update_point<false, false>(PointState&, const Model&, double);
+template double update_point<Strength::mixed, true>(PointState&, const Model&, double);
+template double update_point<Strength::mixed, false>(PointState&, const Model&, double);
+template double update_point<Strength::isotropic, true>(PointState&, const Model&, double);
+template double update_point<Strength::isotropic, false>(PointState&, const Model&, double);
+template double update_point<Strength::none, true>(PointState&, const Model&, double);
+template double update_point<Strength::none, false>(PointState&, const Model&, double);
 
 }  // namespace mpmshock

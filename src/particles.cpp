@@ -13,12 +13,15 @@ void for_each_double_field(P& p, F&& f) {
 }
 template <class P, class F>
 void for_each_strength_field(P& p, F&& f) {
-  for (auto* v : {&p.sxx, &p.syy, &p.sxy, &p.axx, &p.ayy, &p.axy, &p.yield_stress, &p.plastic_strain}) f(*v);
+  if (p.has_strength())
+    for (auto* v : {&p.sxx, &p.syy, &p.sxy, &p.plastic_strain}) f(*v);
+  if (p.has_back_stress())
+    for (auto* v : {&p.axx, &p.ayy, &p.axy}) f(*v);
 }
 
 }  // namespace
 
-void Particles::add(double px, double py, double pvx, double pvy, double m, double V0, Body b, double sigma_y0) {
+void Particles::add(double px, double py, double pvx, double pvy, double m, double V0, Body b) {
   id.push_back(static_cast<std::uint32_t>(x.size()));
   x.push_back(px);
   y.push_back(py);
@@ -31,29 +34,26 @@ void Particles::add(double px, double py, double pvx, double pvy, double m, doub
   Fyx.push_back(0.0);
   Fyy.push_back(1.0);
   for (auto* v : {&Lxx, &Lxy, &Lyx, &Lyy, &energy, &pressure, &viscosity}) v->push_back(0.0);
-  if (has_strength()) {
-    for (auto* v : {&sxx, &syy, &sxy, &axx, &ayy, &axy, &plastic_strain}) v->push_back(0.0);
-    yield_stress.push_back(sigma_y0);
-  }
+  for_each_strength_field(*this, [](std::vector<double>& v) { v.push_back(0.0); });
   body.push_back(b);
 }
 
-void Particles::enable_strength(bool on, double sigma_y0) {
-  const std::size_t n = on ? size() : 0;
-  for_each_strength_field(*this, [&](std::vector<double>& v) { v.assign(n, 0.0); });
-  if (on) yield_stress.assign(n, sigma_y0);
+void Particles::enable_strength(bool on, bool back_stress) {
+  for (auto* v : {&sxx, &syy, &sxy, &plastic_strain, &axx, &ayy, &axy}) v->clear();
   strength_ = on;
+  back_stress_ = on && back_stress;
+  for_each_strength_field(*this, [&](std::vector<double>& v) { v.assign(size(), 0.0); });
 }
 
 void Particles::reserve(std::size_t n) {
   for_each_double_field(*this, [&](std::vector<double>& v) { v.reserve(n); });
-  if (has_strength()) for_each_strength_field(*this, [&](std::vector<double>& v) { v.reserve(n); });
+  for_each_strength_field(*this, [&](std::vector<double>& v) { v.reserve(n); });
   id.reserve(n);
   body.reserve(n);
 }
 
 std::size_t Particles::bytes_per_point() const {
-  std::size_t doubles = 17 + (has_strength() ? 8 : 0);
+  const std::size_t doubles = 17 + (has_strength() ? 4 : 0) + (has_back_stress() ? 3 : 0);
   return doubles * sizeof(double) + sizeof(std::uint32_t) + sizeof(Body);
 }
 

@@ -43,7 +43,9 @@ std::string bytes_text(double b) {
 // The files a run writes; --force removes exactly these, never anything else in the directory.
 bool is_run_output(const fs::path& p) {
   const std::string name = p.filename().string();
-  if (name == "regions.csv" || name == "conservation.csv" || name == "summary.json" || name == "scene.txt") return true;
+  if (name == "regions.csv" || name == "conservation.csv" || name == "summary.json" || name == "scene.txt" ||
+      name == "voids.csv")
+    return true;
   return name.rfind("snapshot_", 0) == 0 && (p.extension() == ".h5" || p.extension() == ".tmp");
 }
 
@@ -202,6 +204,14 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     File f = open_output(dir / "scene.txt");
     std::fputs(scene_text.c_str(), f.get());
     flush_or_throw(f.get(), "scene.txt");
+  }
+
+  {
+    File f = open_output(dir / "voids.csv");
+    std::fprintf(f.get(), "body,x,y,radius\n");
+    for (const BodySummary* b : {&initial.flyer, &initial.target})
+      for (const Void& v : b->voids) std::fprintf(f.get(), "%s,%.17g,%.17g,%.17g\n", b->name.c_str(), v.x, v.y, v.r);
+    flush_or_throw(f.get(), "voids.csv");
   }
 
   std::unique_ptr<HugoniotTemperature> thermal;

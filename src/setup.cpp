@@ -22,14 +22,13 @@ GridGeometry make_grid(const Scene& s) {
 }
 
 // Adds the surviving lattice points of one body, bottom row first so that storage follows y.
-void add_points(Particles& p, const Lattice& lat, const VoidLayout& layout, double vy, double rho0, Body body,
-                double sigma_y0) {
+void add_points(Particles& p, const Lattice& lat, const VoidLayout& layout, double vy, double rho0, Body body) {
   const double a = lat.spacing;
   const double V0 = a * a;
   for (int j = 0; j < lat.rows; ++j)
     for (int i = 0; i < lat.columns; ++i) {
       if (layout.removed[lat.index(i, j)]) continue;
-      p.add(lat.x0 + (i + 0.5) * a, lat.y0 + (j + 0.5) * a, 0.0, vy, rho0 * V0, V0, body, sigma_y0);
+      p.add(lat.x0 + (i + 0.5) * a, lat.y0 + (j + 0.5) * a, 0.0, vy, rho0 * V0, V0, body);
     }
 }
 
@@ -68,11 +67,10 @@ InitialState build_initial_state(const Scene& s) {
   }
 
   const std::size_t n = target.size() + flyer.size() - target_voids.removed_count - flyer_voids.removed_count;
-  st.particles.enable_strength(s.effects.plasticity, s.material.yield_stress);
+  st.particles.enable_strength(s.effects.plasticity, s.material.hardening_beta < 1.0);
   st.particles.reserve(n);
-  add_points(st.particles, flyer, flyer_voids, +s.velocity, s.material.density, Body::flyer, s.material.yield_stress);
-  add_points(st.particles, target, target_voids, -s.velocity, s.material.density, Body::target,
-             s.material.yield_stress);
+  add_points(st.particles, flyer, flyer_voids, +s.velocity, s.material.density, Body::flyer);
+  add_points(st.particles, target, target_voids, -s.velocity, s.material.density, Body::target);
 
   st.target = summarize("target", target, target_voids);
   st.flyer = summarize("flyer", flyer, flyer_voids);

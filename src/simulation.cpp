@@ -39,7 +39,7 @@ TransferKernels kernels_for(const Scene& s) {
 Simulation::Simulation(const Scene& scene, InitialState initial)
     : model_(scene), initial_(std::move(initial)), points_(std::move(initial_.particles)), grid_(initial_.grid),
       kernels_(kernels_for(scene)),
-      update_stress_(select_stress_update(scene.effects.plasticity, scene.effects.artificial_viscosity)),
+      update_stress_(select_stress_update(strength_of(scene), scene.effects.artificial_viscosity)),
       scheme_(scene.update_scheme), cfl_(scene.cfl), max_signal_(initial_signal_speed(points_, model_)) {
   initial_.particles = Particles{};
 }

@@ -44,7 +44,7 @@ expect 0 "material points: [0-9]+" -- tiny.scene --check
 [ -e tiny_porous_out ] && fail "--check wrote output"
 
 expect 0 "porosity \(from material points\): 1\.19" -- tiny.scene --quiet --set end_time=20ns --set output_dir=run1
-for f in regions.csv conservation.csv summary.json scene.txt snapshot_00000.h5; do
+for f in regions.csv conservation.csv summary.json scene.txt voids.csv snapshot_00000.h5; do
   [ -s "run1/$f" ] || fail "run1/$f missing or empty"
 done
 grep -q "^end_time = 2e-08 s$" run1/scene.txt || fail "--set end_time not in the resolved scene"
@@ -52,5 +52,18 @@ cp run1/regions.csv before.csv
 expect 2 "key 'output_dir': 'run1' holds the outputs of an earlier run; pass --force" -- tiny.scene --set output_dir=run1
 cmp -s before.csv run1/regions.csv || fail "a refused run changed the earlier outputs"
 expect 0 "steps: " -- tiny.scene --quiet --force --set end_time=20ns --set output_dir=run1
+
+[ "$(wc -l < run1/voids.csv)" -gt 10 ] || fail "voids.csv lists too few voids"
+
+# thermal = off: no temperature is computed, and the columns say so.
+expect 0 "steps: " -- tiny.scene --quiet --set end_time=10ns --set thermal=off --set output_dir=cold
+tail -n 1 cold/regions.csv | cut -d, -f8,9 | grep -qx "nan,nan" || fail "thermal = off did not write nan temperatures"
+
+# Material that leaves the grid stops the run with a diagnostic and a last snapshot (exit 3).
+printf 'porosity = 1\nwidth = 40 um\ntarget_height = 100 um\nflyer_height = 100 um\ncell_size = 10 um\n' > thin.scene
+printf 'grid_margin = 20 um\nend_time = 200 ns\nsnapshot_interval = 0\noutput_dir = thin\n' >> thin.scene
+expect 3 "material point [0-9]+ left the grid .* enlarge grid_margin" -- thin.scene --quiet
+ls thin/snapshot_0000[1-9].h5 >/dev/null 2>&1 || fail "no final snapshot after leaving the grid"
+grep -q '"exit_code": 3' thin/summary.json || fail "summary.json does not record exit code 3"
 
 if [ "$failures" -eq 0 ]; then echo "all checks passed"; else echo "$failures check(s) failed"; exit 1; fi

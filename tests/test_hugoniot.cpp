@@ -19,6 +19,7 @@ struct Case {
   double velocity;
   bool plasticity;
   bool check_temperature;  // see the bilinear note in main()
+  double hardening_beta = 1.0;
 };
 
 // Height of the shock front in the target: where the row-averaged density first exceeds the
@@ -50,8 +51,8 @@ void run_case(const Case& c) {
   char text[512];
   std::snprintf(text, sizeof text,
                 "velocity = %g m/s\nporosity = 1\nwidth = 40 um\ntarget_height = 1.6 mm\nflyer_height = 1.6 mm\n"
-                "cell_size = 10 um\nend_time = 200 ns\nshape_function = %s\nplasticity = %s\n",
-                v, c.shape, c.plasticity ? "on" : "off");
+                "cell_size = 10 um\nend_time = 200 ns\nshape_function = %s\nplasticity = %s\nhardening_beta = %g\n",
+                v, c.shape, c.plasticity ? "on" : "off", c.hardening_beta);
   const Scene scene = parse_scene(text, "hugoniot");
   Simulation sim(scene, build_initial_state(scene));
   const Totals start = compute_totals(sim.particles());
@@ -104,9 +105,9 @@ void run_case(const Case& c) {
   const Totals end = compute_totals(p);
   const double momentum = std::hypot(end.momentum_x, end.momentum_y) / start.momentum_magnitude;
   const double energy = std::abs(end.total_energy() - start.total_energy()) / start.total_energy();
-  std::printf("%-8s v=%4.0f %-6s rho %.1f (%+.2f%%)  P %.3f GPa (%+.2f%%)  Us %.0f (%+.2f%%)  T %.1f K vs %.1f "
+  std::printf("%-8s v=%4.0f %-6s beta %.1f rho %.1f (%+.2f%%)  P %.3f GPa (%+.2f%%)  Us %.0f (%+.2f%%)  T %.1f K vs %.1f "
               "(%+.2f%%)  momentum %.1e  energy %.1e\n",
-              c.shape, v, c.plasticity ? "solid" : "hydro", rho, 100 * (rho / rho_H - 1), P / 1e9,
+              c.shape, v, c.plasticity ? "solid" : "hydro", c.hardening_beta, rho, 100 * (rho / rho_H - 1), P / 1e9,
               100 * (P / P_H - 1), Us_measured, 100 * (Us_measured / Us - 1), T, T_H, 100 * (T / T_H - 1), momentum,
               energy);
   CHECK_REL(rho, rho_H, 0.02);
@@ -126,6 +127,7 @@ int main() {
   // (it adds ~ (2/3) sigma_Y = 0.08 GPa to the normal stress, inside the tolerance) and without.
   for (double v : {500.0, 1000.0, 2000.0}) run_case({"bspline2", v, true, true});
   run_case({"bspline2", 1000.0, false, true});
+  run_case({"bspline2", 1000.0, true, true, 0.5});  // mixed hardening: the back-stress path
   run_case({"gimp", 1000.0, true, true});
   run_case({"gimp", 2000.0, true, true});
   // The paper's bilinear cells hold density, pressure and shock speed, but their grid-crossing

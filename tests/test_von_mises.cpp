@@ -19,10 +19,10 @@ int main() {
   {
     const VonMises vm(al);
     Deviator s{50e6, -30e6, 10e6}, alpha;
-    double sy = 120e6;
+    double eps_p = 0.0;
     const Deviator before = s;
-    CHECK(vm.return_map(s, alpha, sy) == 0.0);
-    CHECK(s.xx == before.xx && s.yy == before.yy && s.xy == before.xy && sy == 120e6);
+    CHECK(vm.return_map(s, alpha, eps_p) == 0.0);
+    CHECK(s.xx == before.xx && s.yy == before.yy && s.xy == before.xy && eps_p == 0.0);
   }
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -32,20 +32,24 @@ int main() {
     for (int trial = 0; trial < 200; ++trial) {
       Deviator alpha{20e6 * u(rng), 20e6 * u(rng), 20e6 * u(rng)};
       Deviator s = alpha + Deviator{400e6 * u(rng), 400e6 * u(rng), 400e6 * u(rng)};
-      double sy = 120e6;
+      double eps_p = 0.01;  // already hardened: sigma_Y = sigma_Y0 + beta H eps_p
+      const double sy0 = vm.yield_radius(eps_p);
+      CHECK_REL(sy0, 120e6 + beta * H * 0.01, 1e-15);
       const Deviator trial_xi = s - alpha, alpha0 = alpha;
       const double q_trial = equivalent_stress(trial_xi);
-      const double deps = vm.return_map(s, alpha, sy);
-      if (q_trial <= 120e6) {
+      const double deps = vm.return_map(s, alpha, eps_p);
+      const double sy = vm.yield_radius(eps_p);
+      if (q_trial <= sy0) {
         CHECK(deps == 0.0);
         continue;
       }
       // d eps_p = (q_trial - sigma_Y) / (3 G + H), whatever beta is.
-      CHECK_REL(deps, (q_trial - 120e6) / (3 * G + H), 1e-12);
+      CHECK_REL(deps, (q_trial - sy0) / (3 * G + H), 1e-12);
+      CHECK_REL(eps_p, 0.01 + deps, 1e-14);
       // Ends on the (moved, grown) surface.
       CHECK_REL(equivalent_stress(s - alpha), sy, 1e-12);
       // Isotropic part: sigma_Y grows by beta H d eps_p.
-      CHECK_REL(sy - 120e6 + 1.0, beta * H * deps + 1.0, 1e-12);
+      CHECK_REL(sy - sy0 + 1.0, beta * H * deps + 1.0, 1e-12);
       // Kinematic part: alpha moves by (1 - beta)(2/3) H sqrt(3/2) d eps_p along n = xi_trial / |xi_trial|.
       const double n_norm = std::sqrt(trial_xi.norm2());
       const double step = (1 - beta) * (2.0 / 3.0) * H * std::sqrt(1.5) * deps;
@@ -82,15 +86,16 @@ int main() {
       s.effects.artificial_viscosity = false;
       return s;
     }());
-    PointState st{0, 0, 0, -1e3, 1, 0, 0, 1, 0, 0, 0, {}, {}, m.yield_stress, 0};
+    PointState st{0, 0, 0, -1e3, 1, 0, 0, 1, 0, 0, 0, {}, {}, 0};
     bool yielded = false;
     for (int k = 0; k < 5000 && !yielded; ++k) {
-      update_point<true, false>(st, model, 1e-9);
+      update_point<Strength::isotropic, false>(st, model, 1e-9);
       if (st.eps_p > 0) {
         yielded = true;
+        const double sigma_y = model.von_mises.yield_radius(st.eps_p);
         const double shear = std::abs(st.s.xx - st.s.yy);
-        CHECK_REL(shear, st.sigma_y, 1e-9);
-        CHECK_REL(st.s.yy, -(2.0 / 3.0) * st.sigma_y, 1e-9);
+        CHECK_REL(shear, sigma_y, 1e-9);
+        CHECK_REL(st.s.yy, -(2.0 / 3.0) * sigma_y, 1e-9);
         // In uniaxial strain eta the von Mises stress is 2 G eta: first yield at eta = sigma_Y0 / (2 G).
         const double eta = 1 - (st.Fxx * st.Fyy - st.Fxy * st.Fyx);
         CHECK_REL(eta, m.yield_stress / (2 * G), 2e-3);

@@ -11,19 +11,23 @@
 
 namespace mpmshock {
 
+// Which strength model runs, resolved at setup: none (hydrodynamic), von Mises with isotropic
+// hardening only (hardening_beta = 1: no back stress to store), or mixed hardening.
+enum class Strength { none, isotropic, mixed };
+
 struct PointState {
   // In: the time-centred velocity gradient. In/out: everything else.
   double Lxx, Lxy, Lyx, Lyy;
   double Fxx, Fxy, Fyx, Fyy;
   double E, P, q;
   Deviator s, alpha;
-  double sigma_y, eps_p;
+  double eps_p;
 };
 
 // One point, one step. Pure and grid-free, so tests can drive it directly.
 // Returns the point's signal speed (for the next time step), or a negative number if the new
 // state is not physical (J <= the EOS limit, or a non-finite result).
-template <bool Plastic, bool Viscous>
+template <Strength S, bool Viscous>
 double update_point(PointState& st, const Model& model, double dt);
 
 struct StressUpdateResult {
@@ -34,7 +38,10 @@ struct StressUpdateResult {
 using StressUpdate = StressUpdateResult (*)(Particles&, const Model&, double dt);
 
 // The update for a set of effects, chosen once at setup.
-StressUpdate select_stress_update(bool plasticity, bool artificial_viscosity);
+StressUpdate select_stress_update(Strength strength, bool artificial_viscosity);
+
+// The strength model a scene asks for.
+Strength strength_of(const Scene& scene);
 
 // The signal speed of a point in its current state (|v| + longitudinal sound speed), for the
 // first time step.

@@ -51,7 +51,29 @@ class MieGruneisen {
 
   // P = P_H(V) + (gamma/V) (E - E_H(V)).
   double pressure(double J, double E) const {
-    return hugoniot_pressure(J) + gamma_rho() * (E - hugoniot_energy(J));
+    const double P_H = hugoniot_pressure(J);
+    return P_H + gamma_rho() * (E - 0.5 * P_H * (1.0 - J) / rho0_);
+  }
+
+  // Pressure and squared bulk sound speed of a state together, sharing the Hugoniot terms (one
+  // division instead of four): the constitutive update needs both every step.
+  struct State {
+    double pressure, sound_speed_squared;
+  };
+  State state(double J, double E) const {
+    const double eta = 1.0 - J;
+    double P_H, slope;
+    if (eta <= 0.0) {
+      P_H = K0_ * eta;
+      slope = K0_;
+    } else {
+      const double inv_d = 1.0 / (1.0 - s_ * eta);
+      P_H = K0_ * eta * inv_d * inv_d;
+      slope = K0_ * (1.0 + s_ * eta) * inv_d * inv_d * inv_d;
+    }
+    const double P = P_H + gamma_rho() * (E - 0.5 * P_H * eta / rho0_);
+    const double c2 = (J * J / rho0_) * (slope * (1.0 - 0.5 * gamma0_ * eta) - 0.5 * gamma0_ * P_H + gamma0_ * P);
+    return {P, c2};
   }
 
   // Isentropic bulk sound speed squared, c^2 = V^2 [ -(dP/dV)_E + P (dP/dE)_V ], written in eta:

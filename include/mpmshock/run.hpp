@@ -35,8 +35,8 @@ struct RunResult {
   std::size_t voids = 0;
 };
 
-// Runs the scene, writing into scene.output_dir: scene.txt, regions.csv, conservation.csv,
-// snapshot_NNNNN.h5 and summary.json. Setup errors throw SceneError; I/O errors std::runtime_error.
+// Runs the scene, writing into scene.output_dir: scene.txt, voids.csv, regions.csv,
+// conservation.csv, snapshot_NNNNN.h5 and summary.json. Setup errors throw SceneError; I/O errors std::runtime_error.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
 
 // The --check report: bodies, grid, material points, voids, time step, steps, memory.

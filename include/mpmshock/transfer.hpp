@@ -110,9 +110,9 @@ std::size_t velocity_gradient_and_move(Particles& p, const Grid& g, const std::v
     p.Lxy[q] = Lxy;
     p.Lyx[q] = Lyx;
     p.Lyy[q] = Lyy;
-    double x = p.x[q] + dt * vx;
-    x -= width * std::floor(x / width);
-    p.x[q] = x < width ? x : 0.0;  // floor round-off can leave x == width
+    double x = p.x[q] + dt * vx;  // a point moves far less than a period per step
+    x = x < 0.0 ? x + width : (x >= width ? x - width : x);
+    p.x[q] = x < width ? x : 0.0;  // x + width can round up to width
     p.y[q] += dt * vy;
     const int row = Shape::first_row(p.y[q], geo);
     if (!(row >= 0 && row <= last_row)) first_out = q < first_out ? q : first_out;

@@ -55,19 +55,26 @@ struct VonMises {
   double shear_modulus;    // G
   double plastic_modulus;  // H = E E_tan / (E - E_tan)
   double beta;             // share of hardening that is isotropic
+  double initial_yield;    // sigma_Y0
 
   explicit VonMises(const Material& mat)
-      : shear_modulus(mat.shear_modulus()), plastic_modulus(mat.plastic_modulus()), beta(mat.hardening_beta) {}
+      : shear_modulus(mat.shear_modulus()), plastic_modulus(mat.plastic_modulus()), beta(mat.hardening_beta),
+        initial_yield(mat.yield_stress) {}
 
-  // Radial return of a trial deviatoric stress onto sqrt(3/2)||s - alpha|| = sigma_y.
-  // Updates s, alpha and sigma_y in place; returns the effective plastic strain increment
-  // d eps_p = (sigma_eq_trial - sigma_y) / (3 G + H), zero if the trial state is elastic.
+  // The yield radius only ever grows by beta H d eps_p, so it is a function of the effective
+  // plastic strain and need not be stored.
+  double yield_radius(double eps_p) const { return initial_yield + beta * plastic_modulus * eps_p; }
+
+  // Radial return of a trial deviatoric stress onto sqrt(3/2)||s - alpha|| = sigma_Y(eps_p).
+  // Updates s, alpha and eps_p in place; returns the effective plastic strain increment
+  // d eps_p = (sigma_eq_trial - sigma_Y) / (3 G + H), zero if the trial state is elastic.
   // The yield radius grows by beta H d eps_p; the back stress by (1 - beta) (2/3) H d e_p with
-  // d e_p = sqrt(3/2) d eps_p n the plastic strain increment along n = xi/||xi||.
-  double return_map(Deviator& s, Deviator& alpha, double& sigma_y) const {
+  // d e_p = sqrt(3/2) d eps_p n the plastic strain increment along n = xi/||xi||. With beta = 1
+  // alpha stays zero, which is why callers may pass a scratch zero for it.
+  double return_map(Deviator& s, Deviator& alpha, double& eps_p) const {
     const Deviator xi = s - alpha;
     const double q_trial = equivalent_stress(xi);
-    const double f = q_trial - sigma_y;
+    const double f = q_trial - yield_radius(eps_p);
     if (f <= 0.0) return 0.0;
     const double G = shear_modulus, H = plastic_modulus;
     const double deps_p = f / (3.0 * G + H);
@@ -77,7 +84,7 @@ struct VonMises {
     const Deviator n = to_unit * xi;
     s = s - (2.0 * G * dgamma) * n;
     alpha = alpha + ((1.0 - beta) * (2.0 / 3.0) * H * dgamma) * n;
-    sigma_y += beta * H * deps_p;
+    eps_p += deps_p;
     return deps_p;
   }
 };
