@@ -60,7 +60,7 @@ expect 0 "steps: " -- tiny.scene --quiet --set end_time=10ns --set thermal=off -
 tail -n 1 cold/regions.csv | cut -d, -f8,9 | grep -qx "nan,nan" || fail "thermal = off did not write nan temperatures"
 
 # Material that leaves the grid stops the run with a diagnostic and a last snapshot (exit 3).
-printf 'porosity = 1\nwidth = 40 um\ntarget_height = 100 um\nflyer_height = 100 um\ncell_size = 10 um\n' > thin.scene
+printf 'porosity = 1\nwidth = 40 um\ntarget_height = 300 um\nflyer_height = 300 um\ncell_size = 10 um\n' > thin.scene
 printf 'grid_margin = 20 um\nend_time = 200 ns\nsnapshot_interval = 0\noutput_dir = thin\n' >> thin.scene
 expect 3 "material point [0-9]+ left the grid .* enlarge grid_margin" -- thin.scene --quiet
 ls thin/snapshot_0000[1-9].h5 >/dev/null 2>&1 || fail "no final snapshot after leaving the grid"
