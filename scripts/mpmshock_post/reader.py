@@ -1,0 +1,238 @@
+"""Reading an mpmshock run directory; everything stays in SI units.
+
+    run = Run("output/paper_base")
+    run.scene["porosity"]            # 1.03
+    b800 = run.regions()["B800"]     # column -> numpy array, e.g. b800["pressure_mean"] in Pa
+    snap = run.snapshot(time=750e-9)
+    rho = snap["density"]            # kg/m3, one value per material point
+    region_stats(snap, "B800")       # the regions.csv row, recomputed from the snapshot
+
+Snapshots are read lazily: opening one reads its attributes, and each dataset is read the first
+time it is asked for. Datasets and groups the reader does not know are ignored, so files from a
+newer simulator (restart data, grid fields) still read.
+"""
+
+import csv
+import json
+import re
+from collections.abc import Mapping
+from pathlib import Path
+from typing import NamedTuple
+
+import h5py
+import numpy as np
+
+from .errors import PostError
+from .local import local_quantity
+from .regions import region_points, region_stats, target_top
+from .scene import Scene
+
+__all__ = ["Run", "Snapshot", "SnapshotInfo", "local_quantity", "region_points", "region_stats", "target_top"]
+
+_SNAPSHOT_NAME = re.compile(r"^snapshot_(\d+)\.h5$")
+
+
+def _text(value):
+    """HDF5 string attributes come back as str or bytes depending on how they were written."""
+    return value.decode("utf-8") if isinstance(value, bytes) else str(value)
+
+
+def _read_csv(path):
+    """Header and rows (lists of strings) of a CSV file the simulator wrote."""
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.reader(f))
+    except FileNotFoundError:
+        raise PostError(f"{path} not found (did the run start in this directory?)") from None
+    if not rows:
+        raise PostError(f"{path} is empty")
+    return rows[0], rows[1:]
+
+
+def _columns(path, header, rows, text_columns=(), int_columns=()):
+    """Column name -> numpy array; text columns stay strings, counts become ints, the rest floats."""
+    out = {}
+    for i, name in enumerate(header):
+        values = [row[i] for row in rows]
+        if name in text_columns:
+            out[name] = np.array(values, dtype=str)
+            continue
+        try:
+            out[name] = np.array(values, dtype=int if name in int_columns else float)
+        except ValueError:
+            raise PostError(f"{path}: column '{name}' holds a value that is not a number") from None
+    return out
+
+
+class Fields(Mapping):
+    """The /particles datasets of one snapshot, read on first access and then kept."""
+
+    def __init__(self, path, datasets):
+        self._path = path
+        self._datasets = datasets  # name -> (shape, units, description)
+        self._cache = {}
+
+    def __getitem__(self, name):
+        if name not in self._datasets:
+            raise PostError(f"{self._path} has no dataset /particles/{name} "
+                            f"(it has: {', '.join(self._datasets)})")
+        if name not in self._cache:
+            with h5py.File(self._path, "r") as f:
+                self._cache[name] = f["particles"][name][()]
+        return self._cache[name]
+
+    def __iter__(self):
+        return iter(self._datasets)
+
+    def __len__(self):
+        return len(self._datasets)
+
+    def shape(self, name):
+        return self._datasets[name][0]
+
+    def units(self, name):
+        return self._datasets[name][1]
+
+    def description(self, name):
+        return self._datasets[name][2]
+
+
+class Snapshot:
+    """One snapshot_NNNNN.h5: `time` (s), `step`, `index`, `scene`, and the point `fields`."""
+
+    def __init__(self, path):
+        self.path = Path(path)
+        try:
+            with h5py.File(self.path, "r") as f:
+                attrs = {key: f.attrs[key] for key in f.attrs}
+                group = f.get("particles")
+                if not isinstance(group, h5py.Group):
+                    raise PostError(f"{self.path} has no /particles group")
+                datasets = {name: (item.shape, _text(item.attrs.get("units", "")),
+                                   _text(item.attrs.get("description", "")))
+                            for name, item in group.items() if isinstance(item, h5py.Dataset)}
+        except OSError as e:
+            raise PostError(f"cannot read snapshot {self.path}: {e}") from None
+        if "time" not in attrs:
+            raise PostError(f"{self.path} has no 'time' attribute: not an mpmshock snapshot?")
+        self.time = float(attrs["time"])
+        self.step = int(attrs.get("step", -1))
+        match = _SNAPSHOT_NAME.match(self.path.name)
+        self.index = int(attrs.get("snapshot", match.group(1) if match else -1))
+        self.attrs = {key: _text(v) if isinstance(v, (bytes, str)) else v for key, v in attrs.items()}
+        self.scene = Scene(self.attrs["scene"], f"{self.path}:/scene") if "scene" in attrs else None
+        self.fields = Fields(self.path, datasets)
+
+    def __getitem__(self, name):
+        return self.fields[name]
+
+    @property
+    def particle_count(self):
+        if "particle_count" in self.attrs:
+            return int(self.attrs["particle_count"])
+        return len(self.fields["id"])
+
+    def __repr__(self):
+        return f"Snapshot({str(self.path)!r}, time={self.time:g} s, step={self.step})"
+
+
+class SnapshotInfo(NamedTuple):
+    index: int    # the NNNNN of snapshot_NNNNN.h5
+    time: float   # s
+    path: Path
+
+
+class Run:
+    """An mpmshock output directory: scene, region time series, conservation, voids, snapshots."""
+
+    def __init__(self, path):
+        self.path = Path(path)
+        if not self.path.is_dir():
+            raise PostError(f"run directory '{path}' not found")
+        scene_file = self.path / "scene.txt"
+        if scene_file.is_file():
+            self.scene = Scene(scene_file.read_text(), str(scene_file))
+        else:
+            snapshots = self.snapshots()
+            if not snapshots or Snapshot(snapshots[0].path).scene is None:
+                raise PostError(f"'{path}' is not an mpmshock run directory: no scene.txt and no snapshot")
+            self.scene = Snapshot(snapshots[0].path).scene
+
+    @property
+    def name(self):
+        return self.path.resolve().name
+
+    def regions(self):
+        """Region name -> {column -> array} from regions.csv, regions in file order, SI units."""
+        path = self.path / "regions.csv"
+        header, rows = _read_csv(path)
+        if header[:2] != ["time", "region"]:
+            raise PostError(f"{path}: header should start with 'time,region', got '{','.join(header[:2])}'")
+        names = list(dict.fromkeys(row[1] for row in rows))
+        return {name: _columns(path, header, [row for row in rows if row[1] == name], text_columns=("region",),
+                                 int_columns=("count",))
+                for name in names}
+
+    def conservation(self):
+        """Column -> array from conservation.csv (time, step, dt, mass, momenta, energies)."""
+        path = self.path / "conservation.csv"
+        return _columns(path, *_read_csv(path), int_columns=("step",))
+
+    def voids(self):
+        """Column -> array from voids.csv: body ('flyer'/'target'), x, y, radius (m), initial layout."""
+        path = self.path / "voids.csv"
+        return _columns(path, *_read_csv(path), text_columns=("body",))
+
+    def summary(self):
+        """summary.json as a dict (exit_code, steps, material_points, porosity, errors, ...)."""
+        path = self.path / "summary.json"
+        try:
+            return json.loads(path.read_text())
+        except FileNotFoundError:
+            raise PostError(f"{path} not found (the run has not finished?)") from None
+        except json.JSONDecodeError as e:
+            raise PostError(f"{path}: {e}") from None
+
+    def snapshots(self):
+        """SnapshotInfo of every snapshot_NNNNN.h5, by index; .tmp and .xdmf files are skipped."""
+        found = []
+        for path in self.path.iterdir():
+            match = _SNAPSHOT_NAME.match(path.name)
+            if match:
+                try:
+                    with h5py.File(path, "r") as f:
+                        time = float(f.attrs["time"])
+                except (OSError, KeyError) as e:
+                    raise PostError(f"cannot read the time of snapshot {path}: {e}") from None
+                found.append(SnapshotInfo(int(match.group(1)), time, path))
+        return sorted(found)
+
+    def snapshot(self, index=None, time=None):
+        """The snapshot with file number `index` (negative: from the end; default the last), or the
+        one nearest `time` (s), which must lie within a tenth of the snapshot spacing."""
+        infos = self.snapshots()
+        if not infos:
+            raise PostError(f"no snapshot_*.h5 in {self.path}")
+        if time is not None:
+            return Snapshot(self._nearest(infos, time).path)
+        if index is None or index < 0:
+            position = -1 if index is None else index
+            if -position > len(infos):
+                raise PostError(f"{self.path} has only {len(infos)} snapshots, cannot take index {index}")
+            return Snapshot(infos[position].path)
+        for info in infos:
+            if info.index == index:
+                return Snapshot(info.path)
+        raise PostError(f"{self.path} has no snapshot {index} (it has {infos[0].index} to {infos[-1].index})")
+
+    def _nearest(self, infos, time):
+        times = np.array([info.time for info in infos])
+        nearest = int(np.argmin(np.abs(times - time)))
+        spacing = np.median(np.diff(times)) if len(times) > 1 else abs(times[0])
+        if abs(times[nearest] - time) > 0.1 * spacing + 1e-15:
+            listed = ", ".join(f"{t * 1e9:g}" for t in times)
+            raise PostError(f"no snapshot near t = {time * 1e9:g} ns in {self.path} (snapshots at {listed} ns)")
+        return infos[nearest]
+
+    def __repr__(self):
+        return f"Run({str(self.path)!r})"

@@ -1,0 +1,115 @@
+"""The resolved scene (scene.txt, and the `scene` attribute of every snapshot) and its regions.
+
+Each line is `key = value unit`: the value is a number in SI units followed by its unit, or a word.
+Region definitions (`region.NAME = bottom 1e-04 m 8e-04 m`) are kept as text in the dict and also
+parsed into RegionSpec objects, which mirror the simulator's measured domains.
+"""
+
+from dataclasses import dataclass
+
+from .errors import PostError
+
+# Length units a hand-written region spec may use; the resolved scene always writes metres.
+_LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "nm": 1e-9}
+
+
+@dataclass(frozen=True)
+class RegionSpec:
+    """A measured domain of the paper (physics-notes section 5); lengths in m.
+
+    bottom: target points with y1 <= y <= y1 + height.
+    top:    target points with y_top - height <= y <= y_top, y_top the highest target point.
+    band:   points of either body with y1 <= y <= y2.
+    """
+
+    kind: str
+    y1: float = 0.0
+    y2: float = 0.0
+    height: float = 0.0
+
+    @property
+    def target_only(self):
+        return self.kind != "band"
+
+    @property
+    def extent(self):
+        """Height of the domain, used to give domains of equal height the same colour."""
+        return self.y2 - self.y1 if self.kind == "band" else self.height
+
+    def bounds(self, y_top):
+        """Lower and upper y of the domain, computed exactly as the simulator does (lo + h in double)."""
+        if self.kind == "bottom":
+            return self.y1, self.y1 + self.height
+        if self.kind == "top":
+            return y_top - self.height, y_top
+        return self.y1, self.y2
+
+
+def _lengths(tokens, text):
+    """Numbers of a region spec, each optionally followed by a length unit, in metres."""
+    values = []
+    for token in tokens:
+        if token in _LENGTH_UNITS:
+            if not values:
+                raise PostError(f"region '{text}': unit '{token}' before any number")
+            values[-1] *= _LENGTH_UNITS[token]
+            continue
+        try:
+            values.append(float(token))
+        except ValueError:
+            raise PostError(f"region '{text}': '{token}' is neither a number nor a length unit "
+                            f"({', '.join(_LENGTH_UNITS)})") from None
+    return values
+
+
+def parse_region(text):
+    """RegionSpec from 'bottom Y1 H', 'top H' or 'band Y1 Y2' (metres unless a unit follows)."""
+    tokens = text.split()
+    arity = {"bottom": 2, "top": 1, "band": 2}
+    if not tokens or tokens[0] not in arity:
+        raise PostError(f"region '{text}': expected 'bottom Y1 H', 'top H' or 'band Y1 Y2'")
+    kind = tokens[0]
+    values = _lengths(tokens[1:], text)
+    if len(values) != arity[kind]:
+        raise PostError(f"region '{text}': '{kind}' takes {arity[kind]} length(s), got {len(values)}")
+    if kind == "bottom":
+        return RegionSpec(kind, y1=values[0], height=values[1])
+    if kind == "top":
+        return RegionSpec(kind, height=values[0])
+    return RegionSpec(kind, y1=values[0], y2=values[1])
+
+
+class Scene(dict):
+    """key -> float (SI) or str, in file order; `units[key]` is the unit text ('' for none)."""
+
+    def __init__(self, text, source):
+        super().__init__()
+        self.source = source
+        self.units = {}
+        for number, line in enumerate(text.splitlines(), start=1):
+            line = line.split("#", 1)[0].strip()
+            if not line:
+                continue
+            key, sep, value = line.partition("=")
+            if not sep:
+                raise PostError(f"{source}:{number}: expected 'key = value', got '{line}'")
+            key, value = key.strip(), value.strip()
+            first, _, unit = value.partition(" ")
+            try:
+                self[key] = float(first)
+                self.units[key] = unit.strip()
+            except ValueError:
+                self[key] = value
+                self.units[key] = ""
+
+    @property
+    def regions(self):
+        """Region name -> RegionSpec, in the order the scene lists them."""
+        specs = {}
+        for key, value in self.items():
+            if key.startswith("region."):
+                try:
+                    specs[key[len("region."):]] = parse_region(value)
+                except PostError as e:
+                    raise PostError(f"{self.source}: key '{key}': {e}") from None
+        return specs
