@@ -1,0 +1,88 @@
+"""Distributions of local density, pressure, temperature and velocity in one region at chosen
+times, each with the Gaussian of the same mean and deviation drawn over it (paper Fig. 11)."""
+
+import numpy as np
+
+from .errors import PostError
+from .labels import case_label
+from .local import has_quantity, local_quantity
+from .regions import region_points
+from .stats import moments
+from .style import COLORS, note_missing, panel_figure
+from .units import TIME, quantity
+
+QUANTITIES = ("density", "pressure", "temperature", "velocity_x", "velocity_y")
+
+
+def region_values(snapshot, region, name):
+    """Display-unit values of one quantity at the region's points (NaN-free; empty if unavailable)."""
+    points = region_points(snapshot, region)
+    if points.size == 0:
+        raise PostError(f"region '{region}' holds no material points at t = {snapshot.time * TIME.factor:g} ns")
+    if not has_quantity(snapshot, name):
+        return np.empty(0)
+    values = local_quantity(snapshot, name)[points] * quantity(name).factor
+    return values[np.isfinite(values)]
+
+
+def distribution_moments(snapshots, region):
+    """Rows (time in s, quantity, count, mean, std, skewness, excess kurtosis), display units."""
+    rows = []
+    for snapshot in snapshots:
+        for name in QUANTITIES:
+            values = region_values(snapshot, region, name)
+            rows.append((snapshot.time, name, values.size) + moments(values))
+    return rows
+
+
+def _central_range(values):
+    lo, hi = np.percentile(values, [0.5, 99.5])
+    return (lo, hi) if hi > lo else (lo - 0.5, hi + 0.5)
+
+
+def _gaussian(x, mean, std):
+    return np.exp(-0.5 * ((x - mean) / std) ** 2) / (std * np.sqrt(2.0 * np.pi))
+
+
+def plot_histograms(snapshots, region, bins=50, title=None, run_name=None):
+    """One panel per quantity, one histogram (probability density) per snapshot time."""
+    fig, axes = panel_figure(len(QUANTITIES), ncols=3)
+    for ax, name in zip(axes, QUANTITIES):
+        q = quantity(name)
+        samples = [region_values(snapshot, region, name) for snapshot in snapshots]
+        finite = [values for values in samples if values.size]
+        if not finite:
+            note_missing(ax, "thermal model off" if name == "temperature" else "no data")
+            ax.set_xlabel(q.label())
+            continue
+        # Shared bin edges, so that the times compare bin by bin, over the central 99% of the
+        # points: hot spots at collapsed voids lie ten deviations out and would squeeze the bulk of
+        # the distribution into a few bins. The moments still use every point.
+        edges = np.histogram_bin_edges(np.concatenate(finite), bins=bins,
+                                       range=_central_range(np.concatenate(finite)))
+        x = np.linspace(edges[0], edges[-1], 400)
+        for i, (snapshot, values) in enumerate(zip(snapshots, samples)):
+            if not values.size:
+                continue
+            color = COLORS[i % len(COLORS)]
+            mean, std, skewness, kurtosis = moments(values)
+            # Normalised by all points, not only those inside the drawn range, so that the
+            # histogram and the Gaussian are both densities of the whole region.
+            weights = np.full(values.size, 1.0 / (values.size * (edges[1] - edges[0])))
+            ax.hist(values, bins=edges, weights=weights, histtype="step", color=color,
+                    label=f"{snapshot.time * TIME.factor:.4g} ns: S={skewness:.2f}, K={kurtosis:.2f}")
+            if std > 0:
+                ax.plot(x, _gaussian(x, mean, std), color=color, linestyle="--", linewidth=1)
+        ax.set_xlabel(q.label())
+        ax.set_ylabel(f"probability density (1/{q.unit_tex or q.unit})" if q.unit else "probability density")
+        ax.legend(fontsize=7, loc="upper right")
+    axes[-1].text(0.05, 0.5, f"region {region}\n\nsolid: histogram of the local values\n"
+                  "dashed: Gaussian of the same mean\nand standard deviation\n\n"
+                  "S: skewness\nK: excess kurtosis (0 for a Gaussian)\n"
+                  "(over all points; the axes show\nthe central 99% of them)",
+                  transform=axes[-1].transAxes, va="center", fontsize=9)
+    if title is None:
+        scene = snapshots[0].scene
+        title = f"{run_name + ': ' if run_name else ''}{case_label(scene) if scene is not None else ''}"
+    fig.suptitle(title)
+    return fig

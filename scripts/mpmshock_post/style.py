@@ -1,0 +1,71 @@
+"""Shared look of the figures.
+
+Figures are built with matplotlib.figure.Figure directly, not pyplot: no backend or global state is
+involved, so the same functions serve the Agg command line and a notebook (which displays a
+returned Figure itself).
+"""
+
+import math
+
+from matplotlib.figure import Figure
+
+from .units import TIME
+
+COLORS = ["tab:blue", "tab:red", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:gray"]
+MARKERS = ["o", "s", "^", "D", "v", "p", "h", "*"]
+LINESTYLES = ["-", "--", ":", "-."]
+FORMATS = ("png", "pdf", "svg")
+
+
+def panel_figure(n_panels, ncols, panel_size=(4.2, 3.2), legend_panel=True):
+    """A grid of panels, row by row; with `legend_panel` one more cell is kept, axis off, for the
+    legend, so that a shared legend does not cover any curve."""
+    cells = n_panels + (1 if legend_panel else 0)
+    nrows = math.ceil(cells / ncols)
+    fig = Figure(figsize=(panel_size[0] * ncols, panel_size[1] * nrows), layout="constrained")
+    axes = [fig.add_subplot(nrows, ncols, i + 1) for i in range(cells)]
+    if legend_panel:
+        axes[-1].axis("off")
+    return fig, axes
+
+
+def region_styles(names, specs):
+    """Line style per region, after the paper's Fig. 2: one colour and marker per domain height,
+    filled symbols and solid lines at the bottom, open symbols and dashed lines at the top."""
+    styles, slot_of_height, taken = {}, {}, set()
+    for name in names:
+        spec = specs.get(name)
+        height = spec.extent if spec else name
+        kind = spec.kind if spec else "band"
+        slot = slot_of_height.get(height)
+        if slot is None or (slot, kind) in taken:
+            slot = len(taken)
+            slot_of_height.setdefault(height, slot)
+        taken.add((slot, kind))
+        color = COLORS[slot % len(COLORS)]
+        styles[name] = dict(color=color, marker=MARKERS[slot % len(MARKERS)],
+                            markerfacecolor="none" if kind == "top" else color,
+                            linestyle="--" if kind == "top" else "-")
+    return styles
+
+
+def time_axis(ax):
+    ax.set_xlabel(TIME.label())
+
+
+def short_ticks(ax):
+    """Squared rates in 1/ns^2 are of order 1e-5: a power-of-ten offset keeps the tick labels short."""
+    ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 4))
+
+
+def mark_every(n_samples):
+    """About 15 symbols per curve: enough to tell the regions apart, few enough to see the line."""
+    return max(1, n_samples // 15)
+
+
+def note_missing(ax, text):
+    ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center", color="gray")
+
+
+def save_figure(fig, path, fmt, dpi):
+    fig.savefig(path, format=fmt, dpi=dpi)

@@ -1,0 +1,79 @@
+"""Region averages against time, from regions.csv: the paper's Fig. 2 and 9 (means), Fig. 4
+(standard deviations) and Fig. 5 and 10 (mean squared rotation, divergence and strain rate)."""
+
+import numpy as np
+
+from .errors import PostError
+from .labels import case_label
+from .style import mark_every, note_missing, panel_figure, region_styles, short_ticks, time_axis
+from .units import TIME, quantity
+
+STATE = ("density", "pressure", "temperature", "velocity_x", "velocity_y")
+DISSIPATION = ("rot2", "div2", "strain_rate2")
+
+
+def select_regions(run, names):
+    """The requested regions' series from regions.csv (all of them when `names` is empty)."""
+    series = run.regions()
+    if not names:
+        return series
+    unknown = [name for name in names if name not in series]
+    if unknown:
+        raise PostError(f"no region {', '.join(repr(n) for n in unknown)} in {run.path / 'regions.csv'} "
+                        f"(regions: {', '.join(series)})")
+    return {name: series[name] for name in names}
+
+
+def in_time_range(columns, trange):
+    """Rows of a region's series with trange[0] <= t <= trange[1] (s); all rows without a range."""
+    if trange is None:
+        return columns
+    keep = (columns["time"] >= trange[0]) & (columns["time"] <= trange[1])
+    return {key: values[keep] for key, values in columns.items()}
+
+
+def plot_region_series(run, quantities, stat, regions=(), trange=None, logy=False, title=None):
+    """One panel per quantity, one curve per region, of the regions.csv column `<quantity>_<stat>`."""
+    series = select_regions(run, regions)
+    styles = region_styles(series, run.scene.regions)
+    fig, axes = panel_figure(len(quantities), ncols=3 if len(quantities) > 3 else 2)
+    prefix = "Std " if stat == "std" else ""
+    for ax, name in zip(axes, quantities):
+        q = quantity(name)
+        drawn = False
+        for region, columns in series.items():
+            columns = in_time_range(columns, trange)
+            values = columns[f"{name}_{stat}"] * q.factor
+            if np.all(np.isnan(values)):
+                continue
+            ax.plot(columns["time"] * TIME.factor, values, label=region, markersize=4,
+                    markevery=mark_every(len(values)), **styles[region])
+            drawn = True
+        if not drawn:
+            note_missing(ax, "thermal model off" if name == "temperature" else "no data")
+        if logy and drawn:
+            ax.set_yscale("log")
+        else:
+            short_ticks(ax)
+        ax.set_ylabel(q.label(prefix))
+        time_axis(ax)
+    handles, labels = axes[0].get_legend_handles_labels()
+    axes[-1].legend(handles, labels, loc="center", title="measured domain")
+    fig.suptitle(title if title is not None else f"{run.name}: {case_label(run.scene)}")
+    return fig
+
+
+def plot_means(run, **options):
+    """Mean density, pressure, temperature and particle velocity (paper Fig. 2 and 9)."""
+    return plot_region_series(run, STATE, "mean", **options)
+
+
+def plot_stds(run, **options):
+    """Their standard deviations over the domain (paper Fig. 4)."""
+    return plot_region_series(run, STATE, "std", **options)
+
+
+def plot_dissipation(run, **options):
+    """Mean squared rotation, divergence and strain rate (paper Fig. 5 and 10)."""
+    return plot_region_series(run, DISSIPATION, "mean", **options)
+

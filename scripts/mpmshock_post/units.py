@@ -1,0 +1,56 @@
+"""The paper's display units (g/cm3, GPa, K, m/s, ns, um); the reader stays in SI, plots convert here."""
+
+import re
+from typing import NamedTuple
+
+from .errors import PostError
+
+
+class Quantity(NamedTuple):
+    symbol: str          # mathtext, as the paper's axes name it
+    unit: str            # plain text, for tables and file names
+    factor: float        # SI value * factor = displayed value
+    unit_tex: str = ""   # mathtext form of the unit where it differs from the plain one
+
+    def label(self, prefix=""):
+        unit = self.unit_tex or self.unit
+        return f"{prefix}{self.symbol}" + (f" ({unit})" if unit else "")
+
+
+# Rotation, divergence and strain rate squared in 1/ns^2: the paper gives its Fig. 5 "in um and ns".
+QUANTITIES = {
+    "density": Quantity(r"$\rho$", "g/cm3", 1e-3, r"g/cm$^3$"),
+    "pressure": Quantity("$P$", "GPa", 1e-9),
+    "temperature": Quantity("$T$", "K", 1.0),
+    "velocity_x": Quantity("$u_x$", "m/s", 1.0),
+    "velocity_y": Quantity("$u_y$", "m/s", 1.0),
+    "speed": Quantity("$|u|$", "m/s", 1.0),
+    "rot2": Quantity(r"$\langle \mathrm{Rot}^2 \rangle$", "1/ns^2", 1e-18, r"ns$^{-2}$"),
+    "div2": Quantity(r"$\langle \mathrm{Div}^2 \rangle$", "1/ns^2", 1e-18, r"ns$^{-2}$"),
+    "strain_rate2": Quantity(r"$\langle \dot\varepsilon^2 \rangle$", "1/ns^2", 1e-18, r"ns$^{-2}$"),
+    "plastic_strain": Quantity(r"$\varepsilon_p$", "", 1.0),
+    "internal_energy": Quantity("$E$", "kJ/g", 1e-6),
+    "artificial_viscosity": Quantity("$q$", "GPa", 1e-9),
+}
+
+TIME = Quantity("$t$", "ns", 1e9)
+LENGTH_FACTOR = 1e6  # m -> um
+
+_TIME_SUFFIXES = {"ns": 1e-9, "us": 1e-6, "µs": 1e-6, "ms": 1e-3, "s": 1.0}
+_TIME = re.compile(r"^\s*([-+0-9.eE]+)\s*(ns|us|µs|ms|s)\s*$")
+
+
+def quantity(name):
+    """Display units of a quantity; quantities without an entry are drawn in SI."""
+    return QUANTITIES.get(name, Quantity(name.replace("_", " "), "SI", 1.0))
+
+
+def parse_time(text):
+    """Seconds from '1200ns', '1.2us' or '1.2e-6s'; a bare number is refused as ambiguous."""
+    match = _TIME.match(text)
+    if not match:
+        raise PostError(f"time '{text}' needs a unit: e.g. 1200ns, 1.2us or 1.2e-6s")
+    try:
+        return float(match.group(1)) * _TIME_SUFFIXES[match.group(2)]
+    except ValueError:
+        raise PostError(f"time '{text}': '{match.group(1)}' is not a number") from None
