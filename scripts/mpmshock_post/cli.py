@@ -1,0 +1,221 @@
+"""mpmshock-plot KIND RUN_DIR... [options]: the paper's figures from mpmshock run directories.
+
+Each kind is a subcommand with its own --help. Bad input (a missing directory, an unknown region,
+no snapshot near a time) ends with one line on stderr and exit status 1; usage errors exit 2.
+"""
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+import matplotlib
+
+from . import timeseries
+from .compare import plot_compare
+from .errors import PostError
+from .field import plot_field
+from .hist import distribution_moments, plot_histograms
+from .reader import Run
+from .style import FORMATS, save_figure
+from .units import parse_time, quantity
+
+_UNITS = ("Units as in the paper: density g/cm3, pressure GPa, temperature K, velocity m/s, "
+          "time ns, length um, squared rotation/divergence/strain rate 1/ns^2.")
+
+
+def _list(text):
+    return [item.strip() for item in text.split(",") if item.strip()]
+
+
+def _argument(parse):
+    """An argparse type from a parser that raises PostError, so that bad values are usage errors."""
+    def convert(text):
+        try:
+            return parse(text)
+        except (PostError, ValueError) as e:
+            raise argparse.ArgumentTypeError(str(e)) from None
+    convert.__name__ = parse.__name__
+    return convert
+
+
+def _numbers(count, what):
+    def numbers(text):
+        values = [float(v) for v in text.split(",")]
+        if len(values) != count:
+            raise PostError(f"{what} needs {count} comma-separated numbers, got '{text}'")
+        return values
+    numbers.__name__ = what
+    return numbers
+
+
+def _times(text):
+    return [parse_time(t) for t in _list(text)]
+
+
+def _time_range(text):
+    times = _times(text)
+    if len(times) != 2 or times[0] >= times[1]:
+        raise PostError(f"time range '{text}' needs T0,T1 with T0 < T1, e.g. 0ns,600ns")
+    return times
+
+
+def build_parser():
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("-o", "--output", help="output file (default: KIND-based name in the first run "
+                        "directory, or in the current directory if that is not writable)")
+    common.add_argument("--format", choices=FORMATS, help="image format (default: from -o, else png)")
+    common.add_argument("--title", help="figure title (default: run name and case)")
+    common.add_argument("--dpi", type=int, default=150, help="resolution of PNG output (default 150)")
+
+    over_time = argparse.ArgumentParser(add_help=False)
+    over_time.add_argument("--regions", type=_list, default=[],
+                           help="comma-separated regions of regions.csv, e.g. B800,T800 (default: all)")
+    over_time.add_argument("--trange", type=_argument(_time_range), metavar="T0,T1",
+                           help="time window, e.g. 0ns,600ns")
+    over_time.add_argument("--logy", action="store_true", help="logarithmic y axes")
+
+    parser = argparse.ArgumentParser(
+        prog="mpmshock-plot", description="Plots of mpmshock runs, after Xu et al., 'Simulation study "
+        "of shock reaction on porous material'.", epilog=_UNITS + " Run 'mpmshock-plot KIND --help' "
+        "for the options of a kind.")
+    kinds = parser.add_subparsers(dest="kind", required=True, metavar="KIND")
+
+    def kind(name, summary, parents, runs="one"):
+        sub = kinds.add_parser(name, parents=parents, help=summary, description=summary, epilog=_UNITS)
+        if runs == "one":
+            sub.add_argument("run_dir", metavar="RUN_DIR", help="an mpmshock output directory")
+        else:
+            sub.add_argument("run_dirs", metavar="RUN_DIR", nargs="+", help="mpmshock output directories")
+        return sub
+
+    kind("timeseries", "mean density, pressure, temperature and particle velocity against time in "
+         "the measured domains (paper Fig. 2, 9)", [common, over_time])
+    kind("std", "standard deviations of density, pressure, temperature and particle velocity in the "
+         "measured domains (paper Fig. 4)", [common, over_time])
+    kind("dissipation", "mean squared rotation, divergence and strain rate in the measured domains "
+         "(paper Fig. 5, 10)", [common, over_time])
+
+    field = kind("field", "one snapshot coloured by a local quantity, optionally with velocity arrows "
+                 "(paper Fig. 1, 3, 6)", [common])
+    which = field.add_mutually_exclusive_group()
+    which.add_argument("--snapshot", type=int, metavar="INDEX",
+                       help="snapshot number NNNNN of snapshot_NNNNN.h5; negative counts from the end "
+                       "(default: the last)")
+    which.add_argument("--time", type=_argument(parse_time), metavar="T",
+                       help="the snapshot nearest T, e.g. 750ns or 1.15us")
+    field.add_argument("--color", default="density",
+                       help="density, pressure, temperature, velocity_x, velocity_y, speed, rot2, div2, "
+                       "strain_rate2, plastic_strain, ... (default density)")
+    field.add_argument("--arrows", action="store_true", help="draw velocity arrows")
+    field.add_argument("--arrow-scale", type=float, metavar="UM_PER_MPS",
+                       help="arrow length in um per m/s of velocity (default: a typical speed is one "
+                       "arrow spacing long)")
+    field.add_argument("--window", type=_argument(_numbers(4, "window")), metavar="X0,X1,Y0,Y1",
+                       help="part of the body to show, in um (default: all of it)")
+    field.add_argument("--body", choices=("all", "target", "flyer"), default="all",
+                       help="which body to draw (default all)")
+    field.add_argument("--clim", type=_argument(_numbers(2, "clim")), metavar="LO,HI",
+                       help="colour limits in display units (default: the central 99%% of the points)")
+    field.add_argument("--cmap", default="turbo", help="matplotlib colour map (default turbo)")
+
+    hist = kind("hist", "distributions of density, pressure, temperature and velocity in one region "
+                "at given times, with the Gaussian of the same mean and deviation; prints skewness and "
+                "excess kurtosis (paper Fig. 11)", [common])
+    hist.add_argument("--region", "--regions", dest="region",
+                      help="one region of the scene, e.g. B800, or a spec 'bottom 100um 800um' "
+                      "(default: the first region)")
+    hist.add_argument("--times", type=_argument(_times), metavar="T1,T2,...",
+                      help="snapshot times, e.g. 1200ns,1250ns,1300ns (default: the last snapshot)")
+    hist.add_argument("--bins", type=int, default=50, help="number of bins (default 50)")
+
+    compare = kind("compare", "one or more region-averaged quantities from several runs on shared axes, "
+                   "legends from what differs between the scenes (paper Fig. 7, 8, 12, 13)",
+                   [common], runs="many")
+    compare.add_argument("--quantity", "--quantities", dest="quantities", type=_list, default=["density"],
+                         help="comma-separated: density, pressure, temperature, velocity_x, velocity_y, "
+                         "rot2, div2, strain_rate2, or X_std (default density)")
+    compare.add_argument("--regions", type=_list, default=[],
+                         help="comma-separated regions (default: the first run's first region)")
+    compare.add_argument("--labels", type=_list, help="comma-separated legend entries, one per run")
+    compare.add_argument("--trange", type=_argument(_time_range), metavar="T0,T1", help="time window")
+    compare.add_argument("--logy", action="store_true", help="logarithmic y axes")
+    return parser
+
+
+def _output_path(args, stem, run_dir):
+    """-o as given (its suffix sets the format unless --format does), else STEM.FORMAT in the run
+    directory, or in the current one where the run directory is read-only."""
+    fmt = args.format
+    if args.output:
+        path = Path(args.output)
+        suffix = path.suffix.lstrip(".").lower()
+        if suffix in FORMATS:
+            if fmt and fmt != suffix:
+                raise PostError(f"-o {args.output} contradicts --format {fmt}")
+            return path, suffix
+        fmt = fmt or "png"
+        return path.with_name(f"{path.name}.{fmt}"), fmt
+    fmt = fmt or "png"
+    folder = Path(run_dir) if os.access(run_dir, os.W_OK) else Path.cwd()
+    return folder / f"{stem}.{fmt}", fmt
+
+
+def _series(args):
+    run = Run(args.run_dir)
+    plot = {"timeseries": timeseries.plot_means, "std": timeseries.plot_stds,
+            "dissipation": timeseries.plot_dissipation}[args.kind]
+    fig = plot(run, regions=args.regions, trange=args.trange, logy=args.logy, title=args.title)
+    return fig, args.kind, run.path
+
+
+def _field(args):
+    run = Run(args.run_dir)
+    snapshot = run.snapshot(time=args.time) if args.time is not None else run.snapshot(args.snapshot)
+    fig = plot_field(snapshot, color=args.color, arrows=args.arrows, arrow_scale=args.arrow_scale,
+                     window_um=args.window, body=args.body, clim=args.clim, cmap=args.cmap,
+                     title=args.title, run_name=run.name)
+    return fig, f"field_{args.color}_{snapshot.index:05d}", run.path
+
+
+def _hist(args):
+    run = Run(args.run_dir)
+    region = args.region or next(iter(run.scene.regions), None)
+    if region is None:
+        raise PostError(f"the scene of {run.path} defines no region; give --region")
+    snapshots = [run.snapshot(time=t) for t in args.times] if args.times else [run.snapshot()]
+    print(f"# region {region}: moments over all its points, display units; "
+          "kurtosis is the EXCESS kurtosis (0 for a Gaussian)")
+    print(f"{'time_ns':>9} {'quantity':<12} {'unit':<6} {'count':>7} {'mean':>12} {'std':>12} "
+          f"{'skewness':>10} {'excess_kurtosis':>16}")
+    for time, name, count, mean, std, skewness, kurtosis in distribution_moments(snapshots, region):
+        print(f"{time * 1e9:9.4g} {name:<12} {quantity(name).unit:<6} {count:7d} {mean:12.5g} {std:12.5g} "
+              f"{skewness:10.4g} {kurtosis:16.4g}")
+    fig = plot_histograms(snapshots, region, bins=args.bins, title=args.title, run_name=run.name)
+    safe_region = "".join(c if c.isalnum() else "_" for c in region)
+    return fig, f"hist_{safe_region}", run.path
+
+
+def _compare(args):
+    runs = [Run(path) for path in args.run_dirs]
+    fig = plot_compare(runs, quantities=args.quantities, regions=args.regions, labels=args.labels,
+                       trange=args.trange, logy=args.logy, title=args.title)
+    return fig, "compare_" + "_".join(args.quantities), runs[0].path
+
+
+_KINDS = {"timeseries": _series, "std": _series, "dissipation": _series, "field": _field, "hist": _hist,
+          "compare": _compare}
+
+
+def main(argv=None):
+    matplotlib.use("Agg")  # files only, never a window
+    args = build_parser().parse_args(argv)
+    try:
+        fig, stem, run_dir = _KINDS[args.kind](args)
+        path, fmt = _output_path(args, stem, run_dir)
+        save_figure(fig, path, fmt, args.dpi)
+    except (PostError, OSError) as e:
+        print(f"mpmshock-plot {args.kind}: error: {e}", file=sys.stderr)
+        return 1
+    print(f"wrote {path}")
+    return 0
