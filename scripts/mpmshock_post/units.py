@@ -1,6 +1,7 @@
 """The paper's display units (g/cm3, GPa, K, m/s, ns, um); the reader stays in SI, plots convert here."""
 
 import re
+from decimal import Decimal, InvalidOperation
 from typing import NamedTuple
 
 from .errors import PostError
@@ -36,7 +37,7 @@ QUANTITIES = {
 TIME = Quantity("$t$", "ns", 1e9)
 LENGTH_FACTOR = 1e6  # m -> um
 
-_TIME_SUFFIXES = {"ns": 1e-9, "us": 1e-6, "µs": 1e-6, "ms": 1e-3, "s": 1.0}
+_TIME_SUFFIXES = {"ns": "1e-9", "us": "1e-6", "µs": "1e-6", "ms": "1e-3", "s": "1"}
 _TIME = re.compile(r"^\s*([-+0-9.eE]+)\s*(ns|us|µs|ms|s)\s*$")
 
 
@@ -49,8 +50,9 @@ def parse_time(text):
     """Seconds from '1200ns', '1.2us' or '1.2e-6s'; a bare number is refused as ambiguous."""
     match = _TIME.match(text)
     if not match:
-        raise PostError(f"time '{text}' needs a unit: e.g. 1200ns, 1.2us or 1.2e-6s")
+        raise PostError(f"time '{text}': give a number with a unit, e.g. 1200ns, 1.2us or 1.2e-6s")
     try:
-        return float(match.group(1)) * _TIME_SUFFIXES[match.group(2)]
-    except ValueError:
+        # In decimal, so that 1200ns is the same double as the 1.2e-06 s the simulator writes.
+        return float(Decimal(match.group(1)) * Decimal(_TIME_SUFFIXES[match.group(2)]))
+    except InvalidOperation:
         raise PostError(f"time '{text}': '{match.group(1)}' is not a number") from None
