@@ -16,16 +16,20 @@
 namespace {
 
 constexpr const char* kUsage = R"(usage: mpmshock SCENE [--set key=value]... [--check] [--quiet] [--force] [--threads N]
+       mpmshock --restart SNAPSHOT [--set key=value]... [--quiet] [--force] [--threads N]
        mpmshock --help | --version | --keys
 
 Runs the material-point simulation of the impact that SCENE (a key = value file) describes and
-writes regions.csv, conservation.csv, HDF5 snapshots and summary.json into its output_dir.
+writes regions.csv, conservation.csv, HDF5 snapshots (with snapshots.xdmf for ParaView) and
+summary.json into its output_dir.
 
   --set key=value  override a key of the scene (repeatable; for parameter sweeps)
   --check          validate the scene, print the set-up (bodies, cells, material points, voids,
                    time step, steps, memory) and exit without running
   --quiet          no progress line on stderr
   --force          replace the outputs of an earlier run in output_dir
+  --restart SNAP   continue the run that snapshot SNAP belongs to, from its state, in its
+                   directory (--set end_time=... to run longer; later outputs need --force)
   --threads N      OpenMP threads (default: OMP_NUM_THREADS or all cores)
   --keys           print the table of scene keys (unit, default, meaning) and exit
   --help           this text
@@ -37,6 +41,7 @@ snapshot is written), 4 output could not be written.
 
 struct Args {
   std::string scene;
+  std::string restart;
   std::vector<std::string> overrides;
   bool check = false, quiet = false, force = false;
   int threads = 0;
@@ -68,6 +73,8 @@ Args parse_args(int argc, char** argv) {
       a.overrides.push_back(value("--set"));
     } else if (arg.rfind("--set=", 0) == 0) {
       a.overrides.push_back(arg.substr(6));
+    } else if (arg == "--restart") {
+      a.restart = value("--restart");
     } else if (arg == "--check") {
       a.check = true;
     } else if (arg == "--quiet" || arg == "-q") {
@@ -88,7 +95,9 @@ Args parse_args(int argc, char** argv) {
       usage_error("more than one scene file given ('" + a.scene + "' and '" + arg + "')");
     }
   }
-  if (a.scene.empty()) usage_error("no scene file given");
+  if (!a.restart.empty() && !a.scene.empty()) usage_error("give a scene file or --restart SNAPSHOT, not both");
+  if (!a.restart.empty() && a.check) usage_error("--check takes a scene file, not --restart");
+  if (a.scene.empty() && a.restart.empty()) usage_error("no scene file given");
   return a;
 }
 
@@ -98,6 +107,14 @@ int main(int argc, char** argv) {
   const Args args = parse_args(argc, argv);
   if (args.threads > 0) omp_set_num_threads(args.threads);
   try {
+    if (!args.restart.empty()) {
+      const mpmshock::RunResult result = mpmshock::restart_run(args.restart, args.overrides, {args.quiet, args.force});
+      if (result.exit_code != mpmshock::kExitOk)
+        std::fprintf(stderr, "mpmshock: the run stopped: %s\nmpmshock: the last state is in the newest snapshot\n",
+                     result.failure.c_str());
+      std::fputs(mpmshock::describe_result(result).c_str(), stdout);
+      return result.exit_code;
+    }
     const mpmshock::Scene scene = mpmshock::load_scene(args.scene, args.overrides);
     if (args.check) {
       const mpmshock::InitialState state = mpmshock::build_initial_state(scene);

@@ -299,6 +299,11 @@ const std::vector<Key>& keys() {
     k.push_back(quantity("snapshot_interval", "output", D::time, non_negative(), "100 ns",
                          "simulated time between HDF5 snapshots; 0: only the first and the last",
                          FIELD(snapshot_interval)));
+    k.push_back(integer("snapshot_compression", "output", closed(0, 9), "0",
+                        "gzip level for every snapshot field (slower, ~1/3 smaller); 0: only id, body, mass",
+                        FIELD(snapshot_compression)));
+    k.push_back(flag("snapshot_grid", "output", "off", "also write the grid's nodal mass and velocity",
+                     FIELD(snapshot_grid)));
     return k;
   }();
   return table;

@@ -4,9 +4,8 @@
 #include <random>
 
 namespace mpmshock {
-namespace {
 
-GridGeometry make_grid(const Scene& s) {
+GridGeometry build_grid_geometry(const Scene& s) {
   GridGeometry g;
   g.h = s.cell_size;
   g.inv_h = 1.0 / s.cell_size;
@@ -20,6 +19,8 @@ GridGeometry make_grid(const Scene& s) {
   g.ny = below + above + 1;
   return g;
 }
+
+namespace {
 
 // Adds the surviving lattice points of one body, bottom row first so that storage follows y.
 void add_points(Particles& p, const Lattice& lat, const VoidLayout& layout, double vy, double rho0, Body body) {
@@ -48,7 +49,7 @@ BodySummary summarize(const char* name, const Lattice& lat, const VoidLayout& la
 
 InitialState build_initial_state(const Scene& s) {
   InitialState st;
-  st.grid = make_grid(s);
+  st.grid = build_grid_geometry(s);
 
   const double a = s.particle_spacing();
   const int columns = static_cast<int>(std::lround(s.width / a));

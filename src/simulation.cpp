@@ -36,12 +36,14 @@ TransferKernels kernels_for(const Scene& s) {
 
 }  // namespace
 
-Simulation::Simulation(const Scene& scene, InitialState initial)
-    : model_(scene), initial_(std::move(initial)), points_(std::move(initial_.particles)), grid_(initial_.grid),
-      kernels_(kernels_for(scene)),
+Simulation::Simulation(const Scene& scene, const GridGeometry& grid, Particles points, const Clock& clock)
+    : model_(scene), points_(std::move(points)), grid_(grid), kernels_(kernels_for(scene)),
       update_stress_(select_stress_update(strength_of(scene), scene.effects.artificial_viscosity)),
-      scheme_(scene.update_scheme), cfl_(scene.cfl), max_signal_(initial_signal_speed(points_, model_)) {
-  initial_.particles = Particles{};
+      scheme_(scene.update_scheme), cfl_(scene.cfl), clock_(clock) {}
+
+Simulation::Simulation(const Scene& scene, const GridGeometry& grid, Particles points)
+    : Simulation(scene, grid, std::move(points), Clock{}) {
+  clock_.max_signal = initial_signal_speed(points_, model_);
 }
 
 StepStatus Simulation::step(double dt) {
@@ -57,9 +59,9 @@ StepStatus Simulation::step(double dt) {
   const std::size_t left = kernels_.gradient_and_move(            // L_p and x_p
       points_, grid_, musl ? grid_.px : grid_.vx, musl ? grid_.py : grid_.vy, dt);
   const StressUpdateResult stress = update_stress_(points_, model_, dt);  // F, s, q, E, P
-  time_ += dt;
-  ++steps_;
-  max_signal_ = stress.max_signal;
+  clock_.time += dt;
+  ++clock_.steps;
+  clock_.max_signal = stress.max_signal;
   if (stress.first_bad != ~std::size_t{0}) return {StepStatus::Code::bad_state, stress.first_bad};
   if (left != kNoPoint) return {StepStatus::Code::left_grid, left};
   return {};
@@ -70,7 +72,7 @@ std::string Simulation::describe(const StepStatus& status) const {
   std::ostringstream out;
   const Particles& p = points_;
   const std::size_t q = status.point;
-  out << "step " << steps_ << ", t = " << time_ << " s: ";
+  out << "step " << clock_.steps << ", t = " << clock_.time << " s: ";
   if (q >= p.size()) {
     out << "a material point is outside the grid";
     return out.str();

@@ -54,7 +54,8 @@ void run_case(const Case& c) {
                 "cell_size = 10 um\nend_time = 200 ns\nshape_function = %s\nplasticity = %s\nhardening_beta = %g\n",
                 v, c.shape, c.plasticity ? "on" : "off", c.hardening_beta);
   const Scene scene = parse_scene(text, "hugoniot");
-  Simulation sim(scene, build_initial_state(scene));
+  InitialState initial = build_initial_state(scene);
+  Simulation sim(scene, initial.grid, std::move(initial.particles));
   const Totals start = compute_totals(sim.particles());
   const HugoniotTemperature thermal(scene.material);
   const double T_H = thermal.hugoniot_temperature(rho0 / rho_H);

@@ -1,8 +1,9 @@
-// Running a scene: set-up, the time loop with its outputs, progress and the closing summary.
+// Running a scene: set-up or restart, the time loop with its outputs, progress and the summary.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "mpmshock/scene.hpp"
 #include "mpmshock/setup.hpp"
@@ -12,32 +13,42 @@ namespace mpmshock {
 // Exit codes of the mpmshock program.
 enum ExitCode : int {
   kExitOk = 0,
-  kExitBadInput = 2,   // bad command line or scene
+  kExitBadInput = 2,   // bad command line, scene or restart request
   kExitNumerical = 3,  // the run stopped on a non-physical state or material leaving the grid
   kExitIo = 4,         // output could not be written
 };
 
 struct RunOptions {
   bool quiet = false;  // no progress line
-  bool force = false;  // replace the outputs of an earlier run in output_dir
+  bool force = false;  // replace the outputs of an earlier run (or, on restart, its later outputs)
 };
 
 struct RunResult {
   int exit_code = kExitOk;
   std::string failure;  // what went wrong, if exit_code != 0
   std::int64_t steps = 0;
+  double start_time = 0.0;  // 0, or the time restarted from
   double end_time = 0.0;
   double wall_seconds = 0.0;
   std::size_t points = 0;
   double point_steps_per_second = 0.0;
-  double mass_error = 0.0, momentum_error = 0.0, energy_error = 0.0;  // relative
+  double mass_error = 0.0, momentum_error = 0.0, energy_error = 0.0;  // relative, since t = 0
   double porosity = 1.0;                                             // from the material points
   std::size_t voids = 0;
+  std::string output_dir;
 };
 
-// Runs the scene, writing into scene.output_dir: scene.txt, voids.csv, regions.csv,
-// conservation.csv, snapshot_NNNNN.h5 and summary.json. Setup errors throw SceneError; I/O errors std::runtime_error.
+// Runs the scene from t = 0, writing into scene.output_dir: scene.txt, voids.csv, regions.csv,
+// conservation.csv, snapshot_NNNNN.h5, snapshots.xdmf and summary.json. Scene errors (voids that
+// cannot fit, an output_dir holding an earlier run) throw SceneError; I/O errors std::runtime_error.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
+
+// Continues the run a snapshot belongs to, from the snapshot's state, to end_time. `overrides`
+// may change output and numerical keys (end_time, intervals, cfl, viscosity, ...), not the bodies,
+// grid or material. The outputs go on in the snapshot's directory (or a new output_dir if one is
+// set); rows and snapshots after the snapshot's time are discarded, which needs --force.
+RunResult restart_run(const std::string& snapshot, const std::vector<std::string>& overrides,
+                      const RunOptions& options);
 
 // The --check report: bodies, grid, material points, voids, time step, steps, memory.
 std::string describe_setup(const Scene& scene, const InitialState& state);

@@ -67,6 +67,8 @@ struct Scene {
   std::string output_dir = "output";
   double sample_interval = 10e-9;
   double snapshot_interval = 100e-9;
+  std::int64_t snapshot_compression = 0;
+  bool snapshot_grid = false;
 
   Material material;
   Effects effects;

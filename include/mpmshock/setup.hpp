@@ -32,7 +32,11 @@ struct InitialState {
   }
 };
 
-// Builds the grid (periodic column covering both bodies plus grid_margin) and the material points:
+// The grid of a scene: a periodic column covering both bodies plus grid_margin, with the impact
+// plane y = 0 on a grid line.
+GridGeometry build_grid_geometry(const Scene& scene);
+
+// Builds the grid and the material points:
 // a regular lattice of particles_per_cell^2 points per cell, the flyer in [-flyer_height, 0] moving
 // up at +velocity, the target in [0, target_height] moving down, voids cut from both.
 // Throws SceneError (naming the porosity key) if the voids cannot be placed.

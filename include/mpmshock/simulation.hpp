@@ -33,29 +33,41 @@ struct TransferKernels {
                                    const std::vector<double>& uy, double dt);
 };
 
+// Where the integrator stands: all it needs, besides the points, to take the next step.
+struct Clock {
+  double time = 0.0;
+  std::int64_t steps = 0;
+  double max_signal = 0.0;  // fastest signal of the last step; sets the next time step
+};
+
 class Simulation {
  public:
-  Simulation(const Scene& scene, InitialState initial);
+  // A new run from its initial points (time 0, first time step from their state).
+  Simulation(const Scene& scene, const GridGeometry& grid, Particles points);
+  // A run resumed from a snapshot's points and clock.
+  Simulation(const Scene& scene, const GridGeometry& grid, Particles points, const Clock& clock);
 
   // Advances by dt (which the caller takes from stable_time_step() or smaller).
   StepStatus step(double dt);
 
   // cfl h / fastest signal of the last step.
-  double stable_time_step() const { return cfl_ * model_.cell_size / max_signal_; }
+  double stable_time_step() const { return cfl_ * model_.cell_size / clock_.max_signal; }
 
-  double time() const { return time_; }
-  std::int64_t steps() const { return steps_; }
+  double time() const { return clock_.time; }
+  std::int64_t steps() const { return clock_.steps; }
+  const Clock& clock() const { return clock_; }
   const Particles& particles() const { return points_; }
   const Grid& grid() const { return grid_; }
   const Model& model() const { return model_; }
-  const InitialState& initial() const { return initial_; }
+  // Node rows the last step used; the grid's fields outside them are stale.
+  int active_row_begin() const { return bins_.row_begin(); }
+  int active_row_end() const { return bins_.row_end(); }
 
   // A readable account of a bad step: the point, its position and its state.
   std::string describe(const StepStatus& status) const;
 
  private:
   Model model_;
-  InitialState initial_;  // bodies and voids as set up (the particles moved into points_)
   Particles points_;
   Grid grid_;
   StripBins bins_;
@@ -63,9 +75,7 @@ class Simulation {
   StressUpdate update_stress_;
   UpdateScheme scheme_;
   double cfl_;
-  double max_signal_;
-  double time_ = 0.0;
-  std::int64_t steps_ = 0;
+  Clock clock_;
 };
 
 }  // namespace mpmshock

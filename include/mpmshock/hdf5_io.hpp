@@ -1,0 +1,62 @@
+// Thin RAII and typed helpers over the HDF5 C API, shared by the snapshot writer and reader.
+// Failures throw std::runtime_error with what was being done; callers add the file name.
+#pragma once
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mpmshock::h5 {
+
+// Owns one HDF5 handle and closes it with the matching call.
+class Handle {
+ public:
+  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what);
+  ~Handle();
+  Handle(Handle&& other) noexcept : id_(other.id_), close_(other.close_) { other.id_ = -1; }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle& operator=(Handle&&) = delete;
+  hid_t get() const { return id_; }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+void check(herr_t status, const std::string& what);
+
+// Errors as exceptions with our own words, not HDF5's stack dump on stderr.
+void silence_error_stack();
+
+struct Compression {
+  int level = 0;  // gzip level with byte shuffle; 0: stored as is
+};
+
+void write_string_attribute(hid_t loc, const char* name, const std::string& value);
+void write_double_attribute(hid_t loc, const char* name, double value);
+void write_int_attribute(hid_t loc, const char* name, std::int64_t value);
+void write_doubles_attribute(hid_t loc, const char* name, const std::vector<double>& values);
+
+// A dataset of dims (rows first) with `units` and `description` attributes; chunked by rows when
+// compressed.
+void write_dataset(hid_t group, const char* name, hid_t mem_type, const void* data, const std::vector<hsize_t>& dims,
+                   const char* units, const char* description, Compression compression = {});
+
+std::string read_string_attribute(hid_t loc, const char* name);
+double read_double_attribute(hid_t loc, const char* name);
+std::int64_t read_int_attribute(hid_t loc, const char* name);
+std::vector<double> read_doubles_attribute(hid_t loc, const char* name);
+bool has_attribute(hid_t loc, const char* name);
+bool has_link(hid_t loc, const char* path);
+
+// Reads a whole dataset, checking its shape: rows == expected_rows (if non-zero) and the
+// trailing dimensions equal `tail`.
+std::vector<double> read_doubles(hid_t loc, const char* path, std::size_t expected_rows,
+                                 const std::vector<hsize_t>& tail);
+std::vector<std::uint32_t> read_uint32(hid_t loc, const char* path, std::size_t expected_rows);
+std::vector<std::uint8_t> read_uint8(hid_t loc, const char* path, std::size_t expected_rows);
+
+}  // namespace mpmshock::h5

@@ -1,0 +1,155 @@
+#include "mpmshock/hdf5_io.hpp"
+
+#include <stdexcept>
+
+namespace mpmshock::h5 {
+
+Handle::Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
+  if (id_ < 0) throw std::runtime_error("cannot " + what);
+}
+
+Handle::~Handle() {
+  if (id_ >= 0) close_(id_);
+}
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error("cannot " + what);
+}
+
+void silence_error_stack() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+namespace {
+
+Handle string_type() {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "make a string type");
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "size a string type");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "set UTF-8");
+  return type;
+}
+
+template <class T>
+void write_attribute(hid_t loc, const char* name, hid_t type, const T* values, hsize_t count) {
+  Handle space(count == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &count, nullptr), H5Sclose,
+               "make an attribute space");
+  Handle attr(H5Acreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              std::string("create attribute ") + name);
+  check(H5Awrite(attr.get(), type, values), std::string("write attribute ") + name);
+}
+
+template <class T>
+std::vector<T> read_rows(hid_t loc, const char* path, hid_t mem_type, std::size_t expected_rows,
+                         const std::vector<hsize_t>& tail) {
+  Handle set(H5Dopen2(loc, path, H5P_DEFAULT), H5Dclose, std::string("open dataset ") + path);
+  Handle space(H5Dget_space(set.get()), H5Sclose, std::string("read the shape of ") + path);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank > 0 ? rank : 0));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  bool ok = rank == static_cast<int>(1 + tail.size()) && (expected_rows == 0 || dims[0] == expected_rows);
+  for (std::size_t k = 0; ok && k < tail.size(); ++k) ok = dims[k + 1] == tail[k];
+  if (!ok) throw std::runtime_error(std::string("dataset ") + path + " has an unexpected shape");
+  std::size_t count = 1;
+  for (hsize_t d : dims) count *= static_cast<std::size_t>(d);
+  std::vector<T> out(count);
+  if (count > 0) check(H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), std::string("read ") + path);
+  return out;
+}
+
+}  // namespace
+
+void write_string_attribute(hid_t loc, const char* name, const std::string& value) {
+  const Handle type = string_type();
+  const char* text = value.c_str();
+  write_attribute(loc, name, type.get(), &text, 1);
+}
+
+void write_double_attribute(hid_t loc, const char* name, double value) {
+  write_attribute(loc, name, H5T_NATIVE_DOUBLE, &value, 1);
+}
+
+void write_int_attribute(hid_t loc, const char* name, std::int64_t value) {
+  write_attribute(loc, name, H5T_NATIVE_INT64, &value, 1);
+}
+
+void write_doubles_attribute(hid_t loc, const char* name, const std::vector<double>& values) {
+  write_attribute(loc, name, H5T_NATIVE_DOUBLE, values.data(), values.size());
+}
+
+void write_dataset(hid_t group, const char* name, hid_t mem_type, const void* data, const std::vector<hsize_t>& dims,
+                   const char* units, const char* description, Compression compression) {
+  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
+               std::string("make the dataspace of ") + name);
+  Handle create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "make dataset properties");
+  if (compression.level > 0 && dims[0] > 0) {
+    // Chunks of up to 64 Ki rows: large enough for deflate, small enough to read a slice.
+    std::vector<hsize_t> chunk = dims;
+    chunk[0] = dims[0] < 65536 ? dims[0] : 65536;
+    check(H5Pset_chunk(create.get(), static_cast<int>(chunk.size()), chunk.data()), "chunk a dataset");
+    check(H5Pset_shuffle(create.get()), "set the shuffle filter");
+    check(H5Pset_deflate(create.get(), static_cast<unsigned>(compression.level)), "set the deflate filter");
+  }
+  Handle set(H5Dcreate2(group, name, mem_type, space.get(), H5P_DEFAULT, create.get(), H5P_DEFAULT), H5Dclose,
+             std::string("create dataset ") + name);
+  if (dims[0] > 0)
+    check(H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), std::string("write ") + name);
+  write_string_attribute(set.get(), "units", units);
+  write_string_attribute(set.get(), "description", description);
+}
+
+std::string read_string_attribute(hid_t loc, const char* name) {
+  Handle attr(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
+  Handle type(H5Aget_type(attr.get()), H5Tclose, std::string("read the type of ") + name);
+  if (H5Tget_class(type.get()) != H5T_STRING) throw std::runtime_error(std::string("attribute ") + name + " is not text");
+  const Handle mem = string_type();
+  char* text = nullptr;
+  check(H5Aread(attr.get(), mem.get(), &text), std::string("read attribute ") + name);
+  std::string out = text ? text : "";
+  Handle space(H5Aget_space(attr.get()), H5Sclose, "read an attribute space");
+#if H5_VERSION_GE(1, 12, 0)
+  H5Treclaim(mem.get(), space.get(), H5P_DEFAULT, &text);
+#else
+  H5Dvlen_reclaim(mem.get(), space.get(), H5P_DEFAULT, &text);
+#endif
+  return out;
+}
+
+double read_double_attribute(hid_t loc, const char* name) {
+  Handle attr(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
+  double v = 0;
+  check(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v), std::string("read attribute ") + name);
+  return v;
+}
+
+std::int64_t read_int_attribute(hid_t loc, const char* name) {
+  Handle attr(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
+  std::int64_t v = 0;
+  check(H5Aread(attr.get(), H5T_NATIVE_INT64, &v), std::string("read attribute ") + name);
+  return v;
+}
+
+std::vector<double> read_doubles_attribute(hid_t loc, const char* name) {
+  Handle attr(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
+  Handle space(H5Aget_space(attr.get()), H5Sclose, "read an attribute space");
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<double> v(static_cast<std::size_t>(n > 0 ? n : 0));
+  if (!v.empty()) check(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, v.data()), std::string("read attribute ") + name);
+  return v;
+}
+
+bool has_attribute(hid_t loc, const char* name) { return H5Aexists(loc, name) > 0; }
+
+bool has_link(hid_t loc, const char* path) { return H5Lexists(loc, path, H5P_DEFAULT) > 0; }
+
+std::vector<double> read_doubles(hid_t loc, const char* path, std::size_t expected_rows,
+                                 const std::vector<hsize_t>& tail) {
+  return read_rows<double>(loc, path, H5T_NATIVE_DOUBLE, expected_rows, tail);
+}
+
+std::vector<std::uint32_t> read_uint32(hid_t loc, const char* path, std::size_t expected_rows) {
+  return read_rows<std::uint32_t>(loc, path, H5T_NATIVE_UINT32, expected_rows, {});
+}
+
+std::vector<std::uint8_t> read_uint8(hid_t loc, const char* path, std::size_t expected_rows) {
+  return read_rows<std::uint8_t>(loc, path, H5T_NATIVE_UINT8, expected_rows, {});
+}
+
+}  // namespace mpmshock::h5

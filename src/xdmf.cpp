@@ -1,0 +1,142 @@
+#include "mpmshock/xdmf.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+namespace mpmshock {
+namespace {
+
+std::string dims(std::size_t n, const std::string& tail) {
+  return std::to_string(n) + (tail.empty() ? "" : " " + tail);
+}
+
+void data_item(std::ostringstream& x, const std::string& dimensions, const std::string& source, const char* indent) {
+  x << indent << "<DataItem Dimensions=\"" << dimensions << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+    << source << "</DataItem>\n";
+}
+
+// A point field straight from the file: AttributeType Scalar or Tensor (3 x 3).
+void attribute(std::ostringstream& x, const XdmfSnapshot& s, const char* name, const char* type, const char* tail) {
+  x << "        <Attribute Name=\"" << name << "\" AttributeType=\"" << type << "\" Center=\"Node\">\n";
+  data_item(x, dims(s.points, tail), s.file + ":/particles/" + name, "          ");
+  x << "        </Attribute>\n";
+}
+
+// What follows works around ParaView's XDMF2 reader, checked against ParaView 5.11 (docs/
+// output-format.md): it takes only the last dimension as components, it reads an HDF5 dataset
+// only with its own rank, and functions of rank-3 inputs fail. A JOIN function reshapes without
+// copying the file's layout.
+
+// A 2 x 2 matrix per point (N x 2 x 2 in the file) presented as 4 components.
+void matrix2(std::ostringstream& x, const XdmfSnapshot& s, const char* name) {
+  x << "        <Attribute Name=\"" << name << "\" AttributeType=\"Matrix\" Center=\"Node\">\n"
+    << "          <DataItem ItemType=\"Function\" Function=\"JOIN($0)\" Dimensions=\"" << s.points << " 4\">\n";
+  data_item(x, dims(s.points, "2 2"), s.file + ":/particles/" + name, "            ");
+  x << "          </DataItem>\n        </Attribute>\n";
+}
+
+// The points' velocity (N x 2 in the file) presented as 3-vectors (v_x, v_y, 0): ParaView's glyphs
+// want three components. Each column is cut out with a hyperslab; the two and a zero are joined.
+void point_velocity(std::ostringstream& x, const XdmfSnapshot& s) {
+  const std::string n = std::to_string(s.points);
+  x << "        <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n"
+    << "          <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, 0 * $0)\" Dimensions=\"" << n << " 3\">\n";
+  for (int column = 0; column < 2; ++column) {
+    x << "            <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << n << " 1\" Type=\"HyperSlab\">\n"
+      << "              <DataItem Dimensions=\"3 2\" Format=\"XML\">0 " << column << " 1 1 " << n << " 1</DataItem>\n";
+    data_item(x, n + " 2", s.file + ":/particles/velocity", "              ");
+    x << "            </DataItem>\n";
+  }
+  x << "          </DataItem>\n        </Attribute>\n";
+}
+
+// A grid field (ny x nx in the file) on the grid's one-node-thick 3D mesh, as a scalar or, joined
+// with a zero z component, a vector.
+void grid_field(std::ostringstream& x, const XdmfSnapshot& s, const char* name, std::initializer_list<const char*> parts) {
+  const std::string nodes = std::to_string(s.ny) + " " + std::to_string(s.nx);
+  const bool vector = parts.size() == 2;
+  x << "        <Attribute Name=\"" << name << "\" AttributeType=\"" << (vector ? "Vector" : "Scalar")
+    << "\" Center=\"Node\">\n"
+    << "          <DataItem ItemType=\"Function\" Function=\"" << (vector ? "JOIN($0, $1, 0 * $0)" : "JOIN($0)")
+    << "\" Dimensions=\"1 " << nodes << (vector ? " 3" : "") << "\">\n";
+  for (const char* part : parts) data_item(x, nodes, s.file + ":/grid/" + part, "            ");
+  x << "          </DataItem>\n        </Attribute>\n";
+}
+
+}  // namespace
+
+std::string xdmf_document(const std::vector<XdmfSnapshot>& snapshots) {
+  std::ostringstream x;
+  x.precision(17);
+  x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n  <Domain>\n";
+  x << "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const XdmfSnapshot& s : snapshots) {
+    x << "      <Grid Name=\"" << s.file << "\" GridType=\"Uniform\">\n";
+    x << "        <Time Value=\"" << s.time << "\" />\n";
+    x << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.points
+      << "\" NodesPerElement=\"1\" />\n";
+    x << "        <Geometry GeometryType=\"XY\">\n";
+    data_item(x, dims(s.points, "2"), s.file + ":/particles/position", "          ");
+    x << "        </Geometry>\n";
+    for (const char* name : {"density", "pressure", "temperature", "internal_energy", "plastic_strain",
+                             "artificial_viscosity", "mass", "volume"})
+      attribute(x, s, name, "Scalar", "");
+    point_velocity(x, s);
+    attribute(x, s, "stress", "Tensor", "3 3");
+    matrix2(x, s, "deformation_gradient");
+    matrix2(x, s, "velocity_gradient");
+    x << "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\""
+      << s.points << "\" NumberType=\"UInt\" Precision=\"4\" Format=\"HDF\">" << s.file
+      << ":/particles/id</DataItem>\n        </Attribute>\n";
+    x << "        <Attribute Name=\"body\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\""
+      << s.points << "\" NumberType=\"UChar\" Precision=\"1\" Format=\"HDF\">" << s.file
+      << ":/particles/body</DataItem>\n        </Attribute>\n";
+    x << "      </Grid>\n";
+  }
+  x << "    </Grid>\n";
+
+  bool any_grid = false;
+  for (const XdmfSnapshot& s : snapshots) any_grid = any_grid || s.grid;
+  if (any_grid) {
+    x << "    <Grid Name=\"grid\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const XdmfSnapshot& s : snapshots) {
+      if (!s.grid) continue;
+      x << "      <Grid Name=\"" << s.file << " grid\" GridType=\"Uniform\">\n";
+      x << "        <Time Value=\"" << s.time << "\" />\n";
+      // A 3D co-rectilinear mesh one node thick: dimensions, origin and spacing in z, y, x order.
+      // (ParaView lays a 2DCoRectMesh in its y-z plane.)
+      x << "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"1 " << s.ny << " " << s.nx << "\" />\n";
+      x << "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n";
+      x << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">0 " << s.y_min
+        << " 0</DataItem>\n";
+      x << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">1 " << s.h << " "
+        << s.h << "</DataItem>\n";
+      x << "        </Geometry>\n";
+      grid_field(x, s, "mass", {"mass"});
+      grid_field(x, s, "velocity", {"velocity_x", "velocity_y"});
+      x << "      </Grid>\n";
+    }
+    x << "    </Grid>\n";
+  }
+  x << "  </Domain>\n</Xdmf>\n";
+  return x.str();
+}
+
+void write_xdmf(const std::string& path, const std::vector<XdmfSnapshot>& snapshots) {
+  const std::string tmp = path + ".tmp";
+  const std::string text = xdmf_document(snapshots);
+  std::FILE* f = std::fopen(tmp.c_str(), "w");
+  if (!f) throw std::runtime_error("cannot open " + tmp + " for writing");
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
+  std::fclose(f);
+  std::error_code ec;
+  if (ok) std::filesystem::rename(tmp, path, ec);
+  if (!ok || ec) {
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + path + " (disk full?)");
+  }
+}
+
+}  // namespace mpmshock

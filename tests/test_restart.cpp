@@ -1,0 +1,106 @@
+// Restart: a run to T and a run to T/2 restarted to T end in the same state, bit for bit, with one
+// thread and with two; and the results do not depend on the thread count at all. Every sum in the
+// step runs in a fixed order (strip-coloured scatter, block-ordered totals), so there is no
+// round-off that the thread count could reorder.
+#include <omp.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "check.hpp"
+#include "mpmshock/hdf5_io.hpp"
+#include "mpmshock/run.hpp"
+#include "mpmshock/scene.hpp"
+#include "mpmshock/snapshot.hpp"
+
+using namespace mpmshock;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Every /particles dataset of two snapshots, compared bit for bit.
+void check_same_snapshot(const fs::path& a, const fs::path& b) {
+  h5::Handle fa(H5Fopen(a.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + a.string());
+  h5::Handle fb(H5Fopen(b.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + b.string());
+  CHECK(h5::read_double_attribute(fa.get(), "time") == h5::read_double_attribute(fb.get(), "time"));
+  CHECK(h5::read_int_attribute(fa.get(), "step") == h5::read_int_attribute(fb.get(), "step"));
+  const std::size_t n = static_cast<std::size_t>(h5::read_int_attribute(fa.get(), "particle_count"));
+  const std::pair<const char*, std::vector<hsize_t>> fields[] = {
+      {"position", {2}},  {"velocity", {2}},       {"mass", {}},   {"volume", {}},
+      {"density", {}},    {"pressure", {}},        {"temperature", {}}, {"internal_energy", {}},
+      {"stress", {3, 3}}, {"plastic_strain", {}},  {"deformation_gradient", {2, 2}},
+      {"velocity_gradient", {2, 2}}, {"artificial_viscosity", {}}};
+  for (const auto& [name, tail] : fields) {
+    const std::string path = std::string("/particles/") + name;
+    const std::vector<double> va = h5::read_doubles(fa.get(), path.c_str(), n, tail);
+    const std::vector<double> vb = h5::read_doubles(fb.get(), path.c_str(), n, tail);
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < va.size(); ++k)
+      differ += std::memcmp(&va[k], &vb[k], sizeof(double)) != 0;
+    if (differ) check::fail(__FILE__, __LINE__, std::string(name) + ": " + std::to_string(differ) + " values differ");
+  }
+  const std::vector<double> sa = h5::read_doubles(fa.get(), "/restart/deviatoric_stress", n, {3});
+  const std::vector<double> sb = h5::read_doubles(fb.get(), "/restart/deviatoric_stress", n, {3});
+  CHECK(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(double)) == 0);
+}
+
+RunResult run(const std::string& scene_file, const fs::path& out, const std::vector<std::string>& extra) {
+  // The automatic grid margin grows with end_time; a run to T/2 is the same run as one to T only
+  // on the same grid (a restart keeps its run's grid whatever end_time it is given).
+  std::vector<std::string> overrides = {"output_dir=" + out.string(), "snapshot_interval=30ns", "grid_margin=100um"};
+  overrides.insert(overrides.end(), extra.begin(), extra.end());
+  return run_scene(load_scene(scene_file, overrides), {true, true});
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return 2;
+  const std::string scene = argv[1];
+  const fs::path root = fs::temp_directory_path() / "mpmshock_test_restart";
+  fs::remove_all(root);
+
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    const fs::path whole = root / ("whole" + std::to_string(threads)), half = root / ("half" + std::to_string(threads));
+    CHECK(run(scene, whole, {"end_time=60ns"}).exit_code == kExitOk);
+    CHECK(run(scene, half, {"end_time=30ns"}).exit_code == kExitOk);
+    const RunResult r = restart_run((half / "snapshot_00001.h5").string(), {"end_time=60ns"}, {true, false});
+    CHECK(r.exit_code == kExitOk);
+    CHECK(std::abs(r.start_time - 30e-9) < 1e-20 && std::abs(r.end_time - 60e-9) < 1e-20);
+    check_same_snapshot(whole / "snapshot_00002.h5", half / "snapshot_00002.h5");
+    CHECK(slurp(whole / "regions.csv") == slurp(half / "regions.csv"));
+    CHECK(slurp(whole / "conservation.csv") == slurp(half / "conservation.csv"));
+    CHECK(slurp(whole / "snapshots.xdmf") == slurp(half / "snapshots.xdmf"));
+    // A restart into a new directory continues the same way.
+    const fs::path other = root / ("other" + std::to_string(threads));
+    CHECK(restart_run((half / "snapshot_00001.h5").string(), {"end_time=60ns", "output_dir=" + other.string()},
+                      {true, false})
+              .exit_code == kExitOk);
+    check_same_snapshot(whole / "snapshot_00002.h5", other / "snapshot_00002.h5");
+  }
+  // The thread count changes nothing.
+  check_same_snapshot(root / "whole1" / "snapshot_00002.h5", root / "whole2" / "snapshot_00002.h5");
+  CHECK(slurp(root / "whole1" / "regions.csv") == slurp(root / "whole2" / "regions.csv"));
+
+  // Restarting mid-run would discard later outputs: refused without --force, allowed with it.
+  CHECK_THROWS_WITH(restart_run((root / "whole1" / "snapshot_00001.h5").string(), {}, {true, false}), "--force",
+                    "1 later snapshot");
+  // Keys that are the saved state cannot change.
+  CHECK_THROWS_WITH(restart_run((root / "whole1" / "snapshot_00002.h5").string(), {"cell_size=5um"}, {true, false}),
+                    "'cell_size'", "cannot change on restart");
+  CHECK_THROWS_WITH(restart_run((root / "whole1" / "snapshot_00002.h5").string(), {}, {true, false}), "'end_time'",
+                    "later end_time");
+  CHECK_THROWS_WITH(read_snapshot((root / "whole1" / "regions.csv").string()), "regions.csv");
+  fs::remove_all(root);
+  return check::result();
+}
