@@ -14,8 +14,8 @@ from .local import local_quantity
 from .units import LENGTH_FACTOR, TIME, quantity
 
 _BODIES = {"flyer": 0, "target": 1}
-_MARGINS_IN = dict(left=0.9, right=1.4, bottom=0.6, top=0.6)  # room for ticks, colourbar, title
-_ARROWS_ACROSS = 25  # arrows along the window's width: readable, yet they follow the voids
+_MARGINS_IN = dict(left=0.9, right=1.4, bottom=0.6, top=0.7)  # room for ticks, colourbar, title
+_ARROWS_ACROSS = 20  # arrows along the window's width: readable, yet they follow the voids
 
 
 def _axes_size(width_um, height_um, longest_in=8.0):
@@ -58,21 +58,21 @@ def _arrow_sample(xy, window, n_across):
     return first, spacing
 
 
-def _draw_arrows(ax, xy, velocity, window, arrow_scale):
+def _draw_arrows(ax, xy, velocity, window, arrow_scale, key_xy):
     """Velocity arrows; `arrow_scale` in um of arrow per m/s. By default a typical speed (the 90th
-    percentile, rounded) is one arrow spacing long, so that the jets at collapsing voids stand out
+    percentile, rounded) is 0.8 arrow spacings long, so that the jets at collapsing voids stand out
     without every other arrow shrinking to a dot."""
     sample, spacing = _arrow_sample(xy, window, _ARROWS_ACROSS)
     u = velocity[sample]
     speed = np.hypot(u[:, 0], u[:, 1])
     reference = float(f"{np.percentile(speed, 90):.1g}")
     if arrow_scale is None:
-        arrow_scale = spacing / max(reference, 1e-30)
+        arrow_scale = 0.8 * spacing / max(reference, 1e-30)
     arrows = ax.quiver(xy[sample, 0], xy[sample, 1], u[:, 0], u[:, 1], angles="xy", scale_units="xy",
                        scale=1.0 / arrow_scale, width=0.003, color="black")
-    if reference > 0:
-        ax.quiverkey(arrows, 0.92, 1.03, reference, f"{reference:g} m/s", labelpos="W",
-                     coordinates="axes", fontproperties={"size": 8})
+    if reference > 0:  # the key sits in the margin above the colour bar, clear of title and data
+        ax.quiverkey(arrows, *key_xy, reference, f"{reference:g} m/s", labelpos="E",
+                     coordinates="figure", fontproperties={"size": 8})
 
 
 def _marker_side_um(snapshot, points):
@@ -133,12 +133,14 @@ def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window
     fig.colorbar(scatter, cax=colorbar_ax, label=q.label(),
                  extend=extend[(bool(np.nanmin(values) < vmin), bool(np.nanmax(values) > vmax))])
     if arrows:
-        _draw_arrows(ax, xy, snapshot["velocity"][points], window, arrow_scale)
+        key_xy = ((m["left"] + ax_w + 0.25) / fig_w, (m["bottom"] + ax_h + 0.12) / fig_h)
+        _draw_arrows(ax, xy, snapshot["velocity"][points], window, arrow_scale, key_xy)
 
     ax.set_xlabel("$x$ (µm)")
     ax.set_ylabel("$y$ (µm)")
     if title is None:
         case = case_label(snapshot.scene) if snapshot.scene is not None else ""
-        title = f"{run_name + ': ' if run_name else ''}{case}\nt = {snapshot.time * TIME.factor:.4g} ns"
+        joiner = ": " if ax_w >= 4.0 else "\n"  # a narrow column: one item a line, clear of the arrow key
+        title = joiner.join(part for part in (run_name, case) if part) + f"\nt = {snapshot.time * TIME.factor:.4g} ns"
     ax.set_title(title, fontsize=10, loc="left")
     return fig
