@@ -23,7 +23,7 @@ def resolve_region(snapshot, region):
     known = snapshot.scene.regions if snapshot.scene is not None else {}
     if region in known:
         return known[region]
-    if region.split()[0] in ("bottom", "top", "band"):
+    if region.split()[:1] in (["bottom"], ["top"], ["band"]):
         return parse_region(region)
     raise PostError(f"no region '{region}' in the scene of {snapshot.path} "
                     f"(regions: {', '.join(known) or 'none'}; or give 'bottom Y1 H', 'top H', 'band Y1 Y2')")

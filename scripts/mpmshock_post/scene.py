@@ -6,11 +6,14 @@ parsed into RegionSpec objects, which mirror the simulator's measured domains.
 """
 
 from dataclasses import dataclass
+from decimal import Decimal, InvalidOperation
 
 from .errors import PostError
 
 # Length units a hand-written region spec may use; the resolved scene always writes metres.
-_LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "nm": 1e-9}
+# Decimal, so that '800 um' is the very double 8e-04 that the scene's 'region.B800' holds.
+_LENGTH_UNITS = {"m": Decimal(1), "mm": Decimal("1e-3"), "um": Decimal("1e-6"), "µm": Decimal("1e-6"),
+                 "nm": Decimal("1e-9")}
 
 
 @dataclass(frozen=True)
@@ -46,20 +49,25 @@ class RegionSpec:
 
 
 def _lengths(tokens, text):
-    """Numbers of a region spec, each optionally followed by a length unit, in metres."""
-    values = []
+    """Numbers of a region spec, each optionally followed by a length unit ('100 um' or '100um'),
+    in metres."""
+    values, unit_given = [], True
     for token in tokens:
         if token in _LENGTH_UNITS:
-            if not values:
-                raise PostError(f"region '{text}': unit '{token}' before any number")
+            if unit_given:
+                raise PostError(f"region '{text}': unit '{token}' does not follow a bare number")
             values[-1] *= _LENGTH_UNITS[token]
+            unit_given = True
             continue
+        number = token.rstrip("".join(_LENGTH_UNITS))  # the letters of m, mm, um, µm, nm
+        unit = token[len(number):]
         try:
-            values.append(float(token))
-        except ValueError:
-            raise PostError(f"region '{text}': '{token}' is neither a number nor a length unit "
-                            f"({', '.join(_LENGTH_UNITS)})") from None
-    return values
+            values.append(Decimal(number) * _LENGTH_UNITS[unit] if unit else Decimal(number))
+            unit_given = bool(unit)
+        except (InvalidOperation, KeyError):
+            raise PostError(f"region '{text}': '{token}' is not a length "
+                            f"(a number, optionally with {', '.join(_LENGTH_UNITS)})") from None
+    return [float(value) for value in values]
 
 
 def parse_region(text):

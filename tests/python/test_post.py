@@ -191,6 +191,9 @@ def test_region_stats_match_csv(ctx):
                   f"regions.csv {written!r} (relative {error:.3g})")
             worst = max(worst, error)
     print(f"    largest relative difference snapshot vs regions.csv: {worst:.2g}")
+    # A hand-written spec in um selects exactly the points of the scene's region in m.
+    check(np.array_equal(reader.region_points(snapshot, "bottom 100 um 800um"), reader.region_points(snapshot, "B800")),
+          "'bottom 100 um 800um' selects other points than B800 = bottom 1e-04 m 8e-04 m")
 
 
 def test_summary_consistent_with_snapshots(ctx):
