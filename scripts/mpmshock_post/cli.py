@@ -15,10 +15,10 @@ from . import timeseries
 from .compare import plot_compare
 from .errors import PostError
 from .field import plot_field
-from .hist import distribution_moments, plot_histograms
+from .hist import moments_table, plot_histograms
 from .reader import Run
 from .style import FORMATS, save_figure
-from .units import parse_time, quantity
+from .units import parse_time
 
 _UNITS = ("Units as in the paper: density g/cm3, pressure GPa, temperature K, velocity m/s, "
           "time ns, length um, squared rotation/divergence/strain rate 1/ns^2.")
@@ -49,6 +49,19 @@ def _numbers(count, what):
     return numbers
 
 
+def _positive_int(text):
+    value = int(text)
+    if value < 1:
+        raise PostError(f"{text} is not a positive whole number")
+    return value
+
+
+def _colormap(name):
+    if name not in matplotlib.colormaps:
+        raise PostError(f"no matplotlib colour map '{name}' (e.g. turbo, viridis, inferno, coolwarm)")
+    return name
+
+
 def _times(text):
     return [parse_time(t) for t in _list(text)]
 
@@ -66,7 +79,8 @@ def build_parser():
                         "directory, or in the current directory if that is not writable)")
     common.add_argument("--format", choices=FORMATS, help="image format (default: from -o, else png)")
     common.add_argument("--title", help="figure title (default: run name and case)")
-    common.add_argument("--dpi", type=int, default=150, help="resolution of PNG output (default 150)")
+    common.add_argument("--dpi", type=_argument(_positive_int), default=150,
+                        help="resolution of PNG output (default 150)")
 
     over_time = argparse.ArgumentParser(add_help=False)
     over_time.add_argument("--regions", type=_list, default=[],
@@ -117,7 +131,8 @@ def build_parser():
                        help="which body to draw (default all)")
     field.add_argument("--clim", type=_argument(_numbers(2, "clim")), metavar="LO,HI",
                        help="colour limits in display units (default: the central 99%% of the points)")
-    field.add_argument("--cmap", default="turbo", help="matplotlib colour map (default turbo)")
+    field.add_argument("--cmap", type=_argument(_colormap), default="turbo",
+                       help="matplotlib colour map (default turbo)")
 
     hist = kind("hist", "distributions of density, pressure, temperature and velocity in one region "
                 "at given times, with the Gaussian of the same mean and deviation; prints skewness and "
@@ -127,7 +142,7 @@ def build_parser():
                       "(default: the first region)")
     hist.add_argument("--times", type=_argument(_times), metavar="T1,T2,...",
                       help="snapshot times, e.g. 1200ns,1250ns,1300ns (default: the last snapshot)")
-    hist.add_argument("--bins", type=int, default=50, help="number of bins (default 50)")
+    hist.add_argument("--bins", type=_argument(_positive_int), default=50, help="number of bins (default 50)")
 
     compare = kind("compare", "one or more region-averaged quantities from several runs on shared axes, "
                    "legends from what differs between the scenes (paper Fig. 7, 8, 12, 13)",
@@ -184,13 +199,7 @@ def _hist(args):
     if region is None:
         raise PostError(f"the scene of {run.path} defines no region; give --region")
     snapshots = [run.snapshot(time=t) for t in args.times] if args.times else [run.snapshot()]
-    print(f"# region {region}: moments over all its points, display units; "
-          "kurtosis is the EXCESS kurtosis (0 for a Gaussian)")
-    print(f"{'time_ns':>9} {'quantity':<12} {'unit':<6} {'count':>7} {'mean':>12} {'std':>12} "
-          f"{'skewness':>10} {'excess_kurtosis':>16}")
-    for time, name, count, mean, std, skewness, kurtosis in distribution_moments(snapshots, region):
-        print(f"{time * 1e9:9.4g} {name:<12} {quantity(name).unit:<6} {count:7d} {mean:12.5g} {std:12.5g} "
-              f"{skewness:10.4g} {kurtosis:16.4g}")
+    print(moments_table(snapshots, region))
     fig = plot_histograms(snapshots, region, bins=args.bins, title=args.title, run_name=run.name)
     safe_region = "".join(c if c.isalnum() else "_" for c in region)
     return fig, f"hist_{safe_region}", run.path

@@ -27,7 +27,7 @@ def plot_compare(runs, quantities=("density",), regions=(), labels=None, trange=
     """A panel per quantity; a colour per run, a line style per region (default: the first run's
     first region)."""
     columns = [column_of(name) for name in quantities]
-    regions = list(regions) or [next(iter(runs[0].regions()))]
+    regions = list(regions) or list(select_regions(runs[0], ()))[:1]
     labels = list(labels) if labels else run_labels(runs)
     if len(labels) != len(runs):
         raise PostError(f"{len(labels)} labels given for {len(runs)} runs")

@@ -35,6 +35,18 @@ def distribution_moments(snapshots, region):
     return rows
 
 
+def moments_table(snapshots, region):
+    """distribution_moments as a text table, saying which kurtosis it is."""
+    lines = [f"# region {region}: moments over all its points, display units; "
+             "kurtosis is the EXCESS kurtosis (0 for a Gaussian)",
+             f"{'time_ns':>9} {'quantity':<12} {'unit':<6} {'count':>7} {'mean':>12} {'std':>12} "
+             f"{'skewness':>10} {'excess_kurtosis':>16}"]
+    for time, name, count, mean, std, skewness, kurtosis in distribution_moments(snapshots, region):
+        lines.append(f"{time * TIME.factor:9.4g} {name:<12} {quantity(name).unit:<6} {count:7d} {mean:12.5g} "
+                     f"{std:12.5g} {skewness:10.4g} {kurtosis:16.4g}")
+    return "\n".join(lines)
+
+
 def _central_range(values):
     lo, hi = np.percentile(values, [0.5, 99.5])
     return (lo, hi) if hi > lo else (lo - 0.5, hi + 0.5)

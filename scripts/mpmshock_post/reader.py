@@ -152,11 +152,11 @@ class Run:
         scene_file = self.path / "scene.txt"
         if scene_file.is_file():
             self.scene = Scene(scene_file.read_text(), str(scene_file))
-        else:
+        else:  # scene.txt deleted or not yet copied along: every snapshot carries the scene too
             snapshots = self.snapshots()
-            if not snapshots or Snapshot(snapshots[0].path).scene is None:
+            self.scene = Snapshot(snapshots[0].path).scene if snapshots else None
+            if self.scene is None:
                 raise PostError(f"'{path}' is not an mpmshock run directory: no scene.txt and no snapshot")
-            self.scene = Snapshot(snapshots[0].path).scene
 
     @property
     def name(self):

@@ -15,6 +15,8 @@ DISSIPATION = ("rot2", "div2", "strain_rate2")
 def select_regions(run, names):
     """The requested regions' series from regions.csv (all of them when `names` is empty)."""
     series = run.regions()
+    if not series:
+        raise PostError(f"{run.path / 'regions.csv'} has no rows yet")
     if not names:
         return series
     unknown = [name for name in names if name not in series]

@@ -10,7 +10,6 @@ import argparse
 import contextlib
 import csv
 import io
-import json
 import os
 import shutil
 import subprocess
@@ -202,7 +201,8 @@ def test_summary_consistent_with_snapshots(ctx):
     first, last = run.snapshot(0), run.snapshot()
     for snapshot in (first, last):
         rows = len(snapshot["id"])
-        check(snapshot.particle_count == rows, f"{snapshot.path}: particle_count {snapshot.particle_count}, {rows} rows")
+        check(snapshot.particle_count == rows,
+              f"{snapshot.path}: particle_count {snapshot.particle_count}, {rows} rows")
         check(summary["material_points"] == rows, f"summary material_points {summary['material_points']}, "
               f"{snapshot.path} has {rows} rows")
     # Porosity = solid area of both plates / area the points occupy at t = 0 (each point one lattice cell).
