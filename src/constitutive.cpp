@@ -11,14 +11,9 @@ double update_point(PointState& st, const Model& model, double dt) {
   const double rho0 = eos.rho0();
   const StrainRate D = strain_rate(st.Lxx, st.Lxy, st.Lyx, st.Lyy);
 
-  // Energy first, from the stress the nodal forces used this step (sigma^n = s^n - (P^n + q^n) I)
-  // and the volume they used (V^n = J^n V0): dE = (V^n / m) sigma^n : L dt. This is the exact work
-  // of those forces on the points (see centre_grid_velocity), so kinetic + internal energy is
-  // conserved; it carries compression work, plastic work and viscous heating alike.
-  const double J_old = st.Fxx * st.Fyy - st.Fxy * st.Fyx;
-  double power = -(st.P + st.q) * D.trace();
-  if constexpr (Plastic) power += stress_power(st.s, D);
-  st.E += dt * (J_old / rho0) * power;
+  // Energy: the exact work of the step's nodal forces on the point (compression, plastic and
+  // viscous work alike), which is what the points' kinetic energy lost.
+  st.E += st.work;
 
   // Kinematics: F^{n+1} = (I + dt L) F^n.
   const double Axx = 1.0 + dt * st.Lxx, Axy = dt * st.Lxy, Ayx = dt * st.Lyx, Ayy = 1.0 + dt * st.Lyy;
@@ -68,7 +63,7 @@ StressUpdateResult update_all(Particles& p, const Model& model, double dt) {
   const double speed_limit2 = model.speed_limit * model.speed_limit;
 #pragma omp parallel for schedule(static) reduction(max : max_signal) reduction(min : first_bad)
   for (std::size_t q = 0; q < p.size(); ++q) {
-    PointState st{p.Lxx[q], p.Lxy[q], p.Lyx[q], p.Lyy[q], p.Fxx[q], p.Fxy[q], p.Fyx[q], p.Fyy[q],
+    PointState st{p.Lxx[q], p.Lxy[q], p.Lyx[q], p.Lyy[q], p.work[q], p.Fxx[q], p.Fxy[q], p.Fyx[q], p.Fyy[q],
                   p.energy[q], p.pressure[q], p.viscosity[q], {}, {}, 0.0};
     if constexpr (S != Strength::none) {
       st.s = {p.sxx[q], p.syy[q], p.sxy[q]};

@@ -8,7 +8,7 @@ namespace {
 template <class P, class F>
 void for_each_double_field(P& p, F&& f) {
   for (auto* v : {&p.x, &p.y, &p.vx, &p.vy, &p.mass, &p.volume0, &p.Fxx, &p.Fxy, &p.Fyx, &p.Fyy, &p.Lxx, &p.Lxy,
-                  &p.Lyx, &p.Lyy, &p.energy, &p.pressure, &p.viscosity})
+                  &p.Lyx, &p.Lyy, &p.work, &p.energy, &p.pressure, &p.viscosity})
     f(*v);
 }
 template <class P, class F>
@@ -33,7 +33,7 @@ void Particles::add(double px, double py, double pvx, double pvy, double m, doub
   Fxy.push_back(0.0);
   Fyx.push_back(0.0);
   Fyy.push_back(1.0);
-  for (auto* v : {&Lxx, &Lxy, &Lyx, &Lyy, &energy, &pressure, &viscosity}) v->push_back(0.0);
+  for (auto* v : {&Lxx, &Lxy, &Lyx, &Lyy, &work, &energy, &pressure, &viscosity}) v->push_back(0.0);
   for_each_strength_field(*this, [](std::vector<double>& v) { v.push_back(0.0); });
   body.push_back(b);
 }
@@ -53,7 +53,7 @@ void Particles::reserve(std::size_t n) {
 }
 
 std::size_t Particles::bytes_per_point() const {
-  const std::size_t doubles = 17 + (has_strength() ? 4 : 0) + (has_back_stress() ? 3 : 0);
+  const std::size_t doubles = 18 + (has_strength() ? 4 : 0) + (has_back_stress() ? 3 : 0);
   return doubles * sizeof(double) + sizeof(std::uint32_t) + sizeof(Body);
 }
 

@@ -21,7 +21,8 @@ TransferKernels kernels_for_shape(bool strength, UpdateScheme scheme) {
   k.to_grid = strength ? particles_to_grid<Shape, true> : particles_to_grid<Shape, false>;
   k.velocity_to_points = scheme == UpdateScheme::musl ? grid_to_particles_velocity<Shape, true>
                                                       : grid_to_particles_velocity<Shape, false>;
-  k.gradient_and_move = velocity_gradient_and_move<Shape>;
+  k.gradient_work_and_move = strength ? velocity_gradient_work_and_move<Shape, true>
+                                      : velocity_gradient_work_and_move<Shape, false>;
   return k;
 }
 
@@ -39,7 +40,9 @@ TransferKernels kernels_for(const Scene& s) {
 Simulation::Simulation(const Scene& scene, const GridGeometry& grid, Particles points, const Clock& clock)
     : model_(scene), points_(std::move(points)), grid_(grid), kernels_(kernels_for(scene)),
       update_stress_(select_stress_update(strength_of(scene), scene.effects.artificial_viscosity)),
-      scheme_(scene.update_scheme), cfl_(scene.cfl), clock_(clock) {}
+      scheme_(scene.update_scheme), cfl_(scene.cfl), clock_(clock) {
+  points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
+}
 
 Simulation::Simulation(const Scene& scene, const GridGeometry& grid, Particles points)
     : Simulation(scene, grid, std::move(points), Clock{}) {
@@ -55,10 +58,10 @@ StepStatus Simulation::step(double dt) {
   update_grid_momentum(grid_, rows_begin, rows_end, dt);          // a_i, v_i^{n+1}
   kernels_.velocity_to_points(points_, bins_, grid_, dt);         // G2P: FLIP v_p (MUSL: re-map p_i)
   const bool musl = scheme_ == UpdateScheme::musl;
-  if (musl) centre_grid_velocity(grid_, rows_begin, rows_end, dt);  // MUSL: time-centred u_i
-  const std::size_t left = kernels_.gradient_and_move(            // L_p and x_p
+  if (musl) remap_grid_velocity(grid_, rows_begin, rows_end);     // MUSL: v~_i = p_i / m_i
+  const std::size_t left = kernels_.gradient_work_and_move(       // L_p, work_p, x_p
       points_, grid_, musl ? grid_.px : grid_.vx, musl ? grid_.py : grid_.vy, dt);
-  const StressUpdateResult stress = update_stress_(points_, model_, dt);  // F, s, q, E, P
+  const StressUpdateResult stress = update_stress_(points_, model_, dt);  // E, F, s, P, q
   clock_.time += dt;
   ++clock_.steps;
   clock_.max_signal = stress.max_signal;

@@ -21,19 +21,15 @@ void update_grid_momentum(Grid& g, int row_begin, int row_end, double dt) {
   }
 }
 
-void centre_grid_velocity(Grid& g, int row_begin, int row_end, double dt) {
+void remap_grid_velocity(Grid& g, int row_begin, int row_end) {
   const auto b = static_cast<std::ptrdiff_t>(g.geo.node(0, row_begin));
   const auto e = static_cast<std::ptrdiff_t>(g.geo.node(0, row_end));
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t i = b; i < e; ++i) {
     const double m = g.m[i];
-    if (m > 0.0) {
-      const double inv_m = 1.0 / m;
-      g.px[i] = 0.5 * (g.px[i] * inv_m + g.vx[i] - dt * g.fx[i]);
-      g.py[i] = 0.5 * (g.py[i] * inv_m + g.vy[i] - dt * g.fy[i]);
-    } else {
-      g.px[i] = g.py[i] = 0.0;
-    }
+    const double inv_m = m > 0.0 ? 1.0 / m : 0.0;
+    g.px[i] *= inv_m;
+    g.py[i] *= inv_m;
   }
 }
 

@@ -86,7 +86,7 @@ int main() {
       s.effects.artificial_viscosity = false;
       return s;
     }());
-    PointState st{0, 0, 0, -1e3, 1, 0, 0, 1, 0, 0, 0, {}, {}, 0};
+    PointState st{0, 0, 0, -1e3, 0, 1, 0, 0, 1, 0, 0, 0, {}, {}, 0};  // uniaxial strain rate, no work: E = 0
     bool yielded = false;
     for (int k = 0; k < 5000 && !yielded; ++k) {
       update_point<Strength::isotropic, false>(st, model, 1e-9);

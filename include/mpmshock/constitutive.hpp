@@ -1,5 +1,6 @@
-// The constitutive update of every material point from its velocity gradient L:
-// internal energy from dE = V (s:D - (P + q) tr D) dt with the stress the step's forces used;
+// The constitutive update of every material point from its velocity gradient L and the work the
+// step's nodal forces did on it (see velocity_gradient_work_and_move): internal energy E += work
+// (compression, plastic and viscous work alike, exactly what the kinetic energy lost);
 // F <- (I + dt L) F; deviatoric stress by the Jaumann rate and radial return (plasticity);
 // Mie-Grüneisen pressure from the new volume and energy; artificial viscosity q (compression only).
 #pragma once
@@ -16,8 +17,9 @@ namespace mpmshock {
 enum class Strength { none, isotropic, mixed };
 
 struct PointState {
-  // In: the time-centred velocity gradient. In/out: everything else.
+  // In: the velocity gradient and the work of the step's forces [J/kg]. In/out: everything else.
   double Lxx, Lxy, Lyx, Lyy;
+  double work;
   double Fxx, Fxy, Fyx, Fyy;
   double E, P, q;
   Deviator s, alpha;

@@ -20,6 +20,7 @@ struct Particles {
   // Time-centred velocity gradient L = grad v of the last step
   std::vector<double> Lxx, Lxy, Lyx, Lyy;
   // Thermodynamic state
+  std::vector<double> work;       // work of the last step's nodal forces on the point [J/kg] (scratch)
   std::vector<double> energy;     // specific internal energy E [J/kg], 0 at the reference state
   std::vector<double> pressure;   // EOS pressure P [Pa]
   std::vector<double> viscosity;  // artificial viscous pressure q [Pa]

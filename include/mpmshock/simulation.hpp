@@ -29,8 +29,8 @@ struct TransferKernels {
   bool (*bin)(StripBins&, const Particles&, const GridGeometry&);
   void (*to_grid)(const Particles&, const StripBins&, Grid&);
   void (*velocity_to_points)(Particles&, const StripBins&, Grid&, double dt);
-  std::size_t (*gradient_and_move)(Particles&, const Grid&, const std::vector<double>& ux,
-                                   const std::vector<double>& uy, double dt);
+  std::size_t (*gradient_work_and_move)(Particles&, const Grid&, const std::vector<double>& ux,
+                                        const std::vector<double>& uy, double dt);
 };
 
 // Where the integrator stands: all it needs, besides the points, to take the next step.

@@ -1,7 +1,8 @@
 // Particle <-> grid transfers, templates on the shape function (see shape.hpp).
 // P2G: m_i = sum N m_p, p_i = sum N m_p v_p, f_i = -sum V_p sigma_p grad N (the paper's f_int).
 // G2P: FLIP velocity v_p += dt sum N a_i; position x_p += dt sum N v_i^{n+1};
-// velocity gradient L_p = sum u_i (x) grad N_i of a nodal velocity u_i (see centre_grid_velocity).
+// velocity gradient L_p = sum u_i (x) grad N_i, with u_i the re-mapped velocity (MUSL) or
+// v_i^{n+1} (USL); and the work the step's nodal forces did on each point (see below).
 #pragma once
 
 #include <cmath>
@@ -47,12 +48,8 @@ void particles_to_grid(const Particles& p, const StripBins& bins, Grid& g) {
 // p_i is consumed, leaving zeros for the MUSL re-map.
 void update_grid_momentum(Grid& g, int row_begin, int row_end, double dt);
 
-// MUSL, time-centred: u_i = (v_i^n + v~_i^{n+1}) / 2, stored in (px, py), where v~_i^{n+1} = p_i / m_i
-// is re-mapped from the updated point velocities and v_i^n = v_i^{n+1} - dt a_i is the velocity the
-// step started from. For FLIP points the kinetic energy changes in a step by exactly
-// dt sum_i f_i . u_i = -dt sum_p V_p sigma_p : L_p[u], so a stress update that does the work
-// V_p sigma_p : L_p[u] dt conserves kinetic + internal energy to round-off.
-void centre_grid_velocity(Grid& g, int row_begin, int row_end, double dt);
+// MUSL: the nodal velocity re-mapped from the updated point velocities, v~_i = p_i / m_i, in (px, py).
+void remap_grid_velocity(Grid& g, int row_begin, int row_end);
 
 // G2P of the FLIP velocity increment. With Remap (MUSL), also scatters m_p v_p^{n+1} back to the
 // nodes at the same stencil.
@@ -85,11 +82,25 @@ void grid_to_particles_velocity(Particles& p, const StripBins& bins, Grid& g, do
   }
 }
 
-// Velocity gradient from nodal velocities (ux, uy) and the position update from v_i^{n+1}.
-// Wraps x into [0, width). Returns the lowest index of a point that left the grid, or kNoPoint.
-template <class Shape>
-std::size_t velocity_gradient_and_move(Particles& p, const Grid& g, const std::vector<double>& ux,
-                                       const std::vector<double>& uy, double dt) {
+// The velocity gradient, the work of the step's forces, and the position update, per point.
+//
+// L_p = sum_i u_i (x) grad N_i from the nodal velocity u (ux, uy): the re-mapped v~^{n+1} in MUSL,
+// v^{n+1} in USL. It drives the kinematics (F, the stress rate) as in standard MUSL, a symplectic
+// step that is stable up to cfl 1.
+//
+// work_p = dt (V_p / m_p) sigma_p : (L_p[v^n] + L_p[v~^{n+1}]) / 2 [J/kg], with v^n = v^{n+1} - dt a
+// the nodal velocity the step started from. For FLIP points the kinetic energy changes in a step
+// by exactly dt sum_i f_i . (v_i^n + v~_i^{n+1}) / 2 = -sum_p m_p work_p, so adding work_p to the
+// internal energy conserves kinetic + internal energy to round-off (in MUSL; USL has no v~ and
+// uses v^{n+1}, which is close but not exact). Using this averaged gradient for the kinematics
+// too would be exact but unstable at any time step (its amplification factor is
+// sqrt(1 + (omega dt)^2 / 2)); hence the two gradients.
+//
+// Positions move with v^{n+1}; x wraps into [0, width). Returns the lowest index of a point that
+// left the grid, or kNoPoint.
+template <class Shape, bool Strength>
+std::size_t velocity_gradient_work_and_move(Particles& p, const Grid& g, const std::vector<double>& ux,
+                                            const std::vector<double>& uy, double dt) {
   const GridGeometry& geo = g.geo;
   const double width = geo.width();
   const int last_row = geo.ny - Shape::support;
@@ -97,12 +108,19 @@ std::size_t velocity_gradient_and_move(Particles& p, const Grid& g, const std::v
 #pragma omp parallel for schedule(static) reduction(min : first_out)
   for (std::size_t q = 0; q < p.size(); ++q) {
     const auto st = Shape::at(p.x[q], p.y[q], geo);
-    double Lxx = 0.0, Lxy = 0.0, Lyx = 0.0, Lyy = 0.0, vx = 0.0, vy = 0.0;
+    double Lxx = 0.0, Lxy = 0.0, Lyx = 0.0, Lyy = 0.0;  // L[u]
+    double Axx = 0.0, Axy = 0.0, Ayx = 0.0, Ayy = 0.0;  // L[v^n + u], twice the averaged gradient
+    double vx = 0.0, vy = 0.0;
     for_each_node(st, geo, [&](std::size_t i, double N, double dNx, double dNy) {
       Lxx += ux[i] * dNx;
       Lxy += ux[i] * dNy;
       Lyx += uy[i] * dNx;
       Lyy += uy[i] * dNy;
+      const double sx = g.vx[i] - dt * g.fx[i] + ux[i], sy = g.vy[i] - dt * g.fy[i] + uy[i];
+      Axx += sx * dNx;
+      Axy += sx * dNy;
+      Ayx += sy * dNx;
+      Ayy += sy * dNy;
       vx += N * g.vx[i];
       vy += N * g.vy[i];
     });
@@ -110,6 +128,11 @@ std::size_t velocity_gradient_and_move(Particles& p, const Grid& g, const std::v
     p.Lxy[q] = Lxy;
     p.Lyx[q] = Lyx;
     p.Lyy[q] = Lyy;
+    // sigma : L_avg with sigma = s - (P + q) I; the spin does no work.
+    double power = -(p.pressure[q] + p.viscosity[q]) * (Axx + Ayy);
+    if constexpr (Strength) power += p.sxx[q] * Axx + p.syy[q] * Ayy + p.sxy[q] * (Axy + Ayx);
+    p.work[q] = 0.5 * dt * p.volume(q) / p.mass[q] * power;
+
     double x = p.x[q] + dt * vx;  // a point moves far less than a period per step
     x = x < 0.0 ? x + width : (x >= width ? x - width : x);
     p.x[q] = x < width ? x : 0.0;  // x + width can round up to width
