@@ -50,8 +50,11 @@ def simulate(binary, scene, out_dir, *overrides):
     command = [binary, scene, "--set", f"output_dir={out_dir}", "--quiet", "--force"]
     for override in overrides:
         command += ["--set", override]
-    done = subprocess.run(command, capture_output=True, text=True,
-                          env=dict(os.environ, OMP_WAIT_POLICY="PASSIVE"), timeout=120)
+    try:
+        done = subprocess.run(command, capture_output=True, text=True,
+                              env=dict(os.environ, OMP_WAIT_POLICY="PASSIVE"), timeout=120)
+    except OSError as e:
+        sys.exit(f"FAILED: cannot run {binary}: {e}")
     if done.returncode != 0:
         sys.exit(f"FAILED: {' '.join(command)} exited {done.returncode}:\n{done.stdout}{done.stderr}")
 
