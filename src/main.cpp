@@ -36,7 +36,8 @@ summary.json into its output_dir.
   --version        the version
 
 Exit codes: 0 done, 2 bad command line or scene, 3 the run hit a non-physical state (a final
-snapshot is written), 4 output could not be written.
+snapshot is written), 4 output could not be written, 130 / 143 stopped by SIGINT / SIGTERM
+after the current step (a final snapshot to restart from and the summary are written).
 )";
 
 struct Args {
@@ -101,18 +102,25 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
+void report(const mpmshock::RunResult& result) {
+  if (result.exit_code == mpmshock::kExitNumerical)
+    std::fprintf(stderr, "mpmshock: the run stopped: %s\nmpmshock: the last state is in the newest snapshot\n",
+                 result.failure.c_str());
+  else if (result.exit_code != mpmshock::kExitOk)
+    std::fprintf(stderr, "mpmshock: %s\n", result.failure.c_str());
+  std::fputs(mpmshock::describe_result(result).c_str(), stdout);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const Args args = parse_args(argc, argv);
   if (args.threads > 0) omp_set_num_threads(args.threads);
+  mpmshock::install_stop_handlers();
   try {
     if (!args.restart.empty()) {
       const mpmshock::RunResult result = mpmshock::restart_run(args.restart, args.overrides, {args.quiet, args.force});
-      if (result.exit_code != mpmshock::kExitOk)
-        std::fprintf(stderr, "mpmshock: the run stopped: %s\nmpmshock: the last state is in the newest snapshot\n",
-                     result.failure.c_str());
-      std::fputs(mpmshock::describe_result(result).c_str(), stdout);
+      report(result);
       return result.exit_code;
     }
     const mpmshock::Scene scene = mpmshock::load_scene(args.scene, args.overrides);
@@ -122,10 +130,7 @@ int main(int argc, char** argv) {
       return mpmshock::kExitOk;
     }
     const mpmshock::RunResult result = mpmshock::run_scene(scene, {args.quiet, args.force});
-    if (result.exit_code != mpmshock::kExitOk)
-      std::fprintf(stderr, "mpmshock: the run stopped: %s\nmpmshock: the last state is in the newest snapshot\n",
-                   result.failure.c_str());
-    std::fputs(mpmshock::describe_result(result).c_str(), stdout);
+    report(result);
     return result.exit_code;
   } catch (const mpmshock::SceneError& e) {
     std::fprintf(stderr, "mpmshock: error: %s\n", e.what());

@@ -3,6 +3,8 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <csignal>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,6 +26,13 @@
 
 namespace mpmshock {
 namespace {
+
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void on_stop_signal(int sig) {
+  g_stop_signal = sig;
+  std::signal(sig, SIG_DFL);  // a second signal ends the program at once
+}
 
 namespace fs = std::filesystem;
 using WallClock = std::chrono::steady_clock;
@@ -238,7 +247,8 @@ class Outputs {
 };
 
 void write_summary_json(const fs::path& path, const RunResult& r) {
-  File f = open_output(path);
+  const fs::path tmp = path.string() + ".tmp";
+  File f = open_output(tmp);
   std::fprintf(f.get(),
                "{\n  \"exit_code\": %d,\n  \"failure\": \"%s\",\n  \"steps\": %lld,\n  \"start_time\": %.10g,\n"
                "  \"end_time\": %.10g,\n  \"wall_seconds\": %.6g,\n  \"material_points\": %zu,\n"
@@ -248,6 +258,8 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
                r.end_time, r.wall_seconds, r.points, r.point_steps_per_second, omp_get_max_threads(), r.mass_error,
                r.momentum_error, r.energy_error, r.porosity, r.voids);
   flush_or_throw(f.get(), path.string());
+  f.reset();
+  fs::rename(tmp, path);
 }
 
 // The time loop, shared by new and restarted runs: steps that land exactly on output times,
@@ -284,6 +296,7 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
     status = sim.step(dt);
     sch.last_dt = dt;
     if (!status.ok()) break;
+    if (g_stop_signal != 0) break;  // after a whole step, so the state is consistent
     const double tol = 1e-9 * dt;
     if (sim.time() >= event_time(sch.next_sample, scene.sample_interval) - tol) {
       out.sample(sim, dt);
@@ -303,6 +316,17 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
     result.failure = sim.describe(status);
     out.sample(sim, sch.last_dt);
     take_snapshot();  // the state that went wrong, for inspection
+  } else if (g_stop_signal != 0 && sim.time() < end_time * (1.0 - 1e-12)) {
+    const int sig = g_stop_signal;
+    result.exit_code = 128 + sig;
+    const std::string name = snapshot_name(sch.snapshot_index);
+    out.sample(sim, sch.last_dt);
+    take_snapshot();  // a state to restart from
+    std::ostringstream why;
+    why << "stopped by " << (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal") << " at t = "
+        << sim.time() * 1e9 << " ns, step " << sim.steps() << "; continue with: mpmshock --restart "
+        << (dir / name).string();
+    result.failure = why.str();
   } else {
     // The end time is an output time whatever the intervals.
     const double tol = 1e-9 * sch.last_dt;
@@ -379,6 +403,13 @@ void check_restart_overrides(const std::string& snapshot, const std::vector<std:
 }
 
 }  // namespace
+
+void install_stop_handlers() {
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+}
+
+int stop_signal() { return g_stop_signal; }
 
 std::string describe_setup(const Scene& s, const InitialState& st) {
   std::ostringstream out;

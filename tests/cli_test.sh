@@ -66,4 +66,24 @@ expect 3 "material point [0-9]+ left the grid .* enlarge grid_margin" -- thin.sc
 ls thin/snapshot_0000[1-9].h5 >/dev/null 2>&1 || fail "no final snapshot after leaving the grid"
 grep -q '"exit_code": 3' thin/summary.json || fail "summary.json does not record exit code 3"
 
+# SIGTERM: the current step finishes, the state is saved and the summary written (exit 143), and
+# the run restarts from that snapshot. The run is far from its end when the signal comes: it is
+# sent once regions.csv has a few rows.
+"$bin" tiny.scene --quiet --threads 1 --set end_time=5us --set output_dir=stopped >stop.out 2>stop.err &
+pid=$!
+for _ in $(seq 1 200); do
+  [ -f stopped/regions.csv ] && [ "$(wc -l < stopped/regions.csv)" -ge 13 ] && break
+  sleep 0.05
+done
+kill -TERM "$pid"
+wait "$pid"
+rc=$?
+[ "$rc" -eq 143 ] || fail "SIGTERM: exit $rc, expected 143"
+grep -q "stopped by SIGTERM at t = .*continue with: mpmshock --restart .*snapshot_00001.h5" stop.err ||
+  fail "SIGTERM: no stop message: $(cat stop.err)"
+grep -q '"exit_code": 143' stopped/summary.json || fail "SIGTERM: summary.json lacks exit code 143"
+[ -f stopped/snapshot_00001.h5 ] || fail "SIGTERM: no snapshot written at the stop"
+ls stopped/*.tmp >/dev/null 2>&1 && fail "SIGTERM left temporary files"
+expect 0 "restarted at" -- --restart stopped/snapshot_00001.h5 --quiet --set end_time=100ns
+
 if [ "$failures" -eq 0 ]; then echo "all checks passed"; else echo "$failures check(s) failed"; exit 1; fi

@@ -16,7 +16,14 @@ enum ExitCode : int {
   kExitBadInput = 2,   // bad command line, scene or restart request
   kExitNumerical = 3,  // the run stopped on a non-physical state or material leaving the grid
   kExitIo = 4,         // output could not be written
+  // Stopped by a signal (SIGINT, SIGTERM): 128 + the signal number, as shells report it, after the
+  // current step finished and a final snapshot and the summary were written.
 };
+
+// SIGINT and SIGTERM ask a running run to stop after its current step; a second one kills at once.
+void install_stop_handlers();
+// The signal that asked to stop, or 0.
+int stop_signal();
 
 struct RunOptions {
   bool quiet = false;  // no progress line
