@@ -205,7 +205,7 @@ const std::vector<Key>& keys() {
     using D = Dimension;
     std::vector<Key> k;
     // Impact
-    k.push_back(quantity("velocity", "impact", D::speed, positive(), "1000 m/s",
+    k.push_back(quantity("velocity", "impact", D::speed, Range{0.0, 1e5, true, false}, "1000 m/s",
                          "each body moves at this speed toward the impact plane y = 0 (target down, flyer up)",
                          FIELD(velocity)));
     k.push_back(quantity("porosity", "impact", D::none, closed(1.0, 10.0), "1.03",
@@ -221,21 +221,21 @@ const std::vector<Key>& keys() {
     k.push_back(flag("flyer_mirror", "impact", "on",
                      "the flyer is the mirror image of the target about y = 0, as in the paper; off: its own voids",
                      FIELD(flyer_mirror)));
-    k.push_back(quantity("target_height", "impact", D::length, positive(), "5 mm", "target (upper body) height",
+    k.push_back(quantity("target_height", "impact", D::length, Range{0.0, 10.0, true, false}, "5 mm", "target (upper body) height",
                          FIELD(target_height)));
-    k.push_back(quantity("flyer_height", "impact", D::length, positive(), "5 mm", "flyer (lower body) height",
+    k.push_back(quantity("flyer_height", "impact", D::length, Range{0.0, 10.0, true, false}, "5 mm", "flyer (lower body) height",
                          FIELD(flyer_height)));
-    k.push_back(quantity("width", "impact", D::length, positive(), "2 mm", "width of the periodic column (x)",
+    k.push_back(quantity("width", "impact", D::length, Range{0.0, 10.0, true, false}, "2 mm", "width of the periodic column (x)",
                          FIELD(width)));
     // Discretisation
-    k.push_back(quantity("cell_size", "numerics", D::length, positive(), "20 um", "background grid cell size h",
+    k.push_back(quantity("cell_size", "numerics", D::length, Range{0.0, 1.0, true, false}, "20 um", "background grid cell size h",
                          FIELD(cell_size)));
     k.push_back(integer("particles_per_cell", "numerics", closed(1, 8), "2",
                         "material points per cell in each direction", FIELD(particles_per_cell)));
     k.push_back(quantity("grid_margin", "numerics", D::length, Range{-kInf, kInf, false, false}, "auto",
                          "empty grid kept beyond each free surface; auto = 8 cells + 2 velocity end_time",
                          FIELD(grid_margin)));
-    k.push_back(quantity("end_time", "numerics", D::time, positive(), "1 us", "simulated time to run",
+    k.push_back(quantity("end_time", "numerics", D::time, Range{0.0, 1.0, true, false}, "1 us", "simulated time to run",
                          FIELD(end_time)));
     k.push_back(quantity("cfl", "numerics", D::none, open(0.0, 1.0), "0.3",
                          "time step = cfl h / (fastest signal: sound speed + viscous speed + particle speed)",
@@ -266,7 +266,7 @@ const std::vector<Key>& keys() {
     k.push_back(flag("artificial_viscosity", "effects", "on", "shock-capturing bulk viscosity in compression",
                      FIELD(effects.artificial_viscosity)));
     // Material (the paper's aluminium)
-    k.push_back(quantity("density", "material", D::density, positive(), "2700 kg/m3", "solid reference density rho0",
+    k.push_back(quantity("density", "material", D::density, Range{0.0, 1e5, true, false}, "2700 kg/m3", "solid reference density rho0",
                          FIELD(material.density)));
     k.push_back(quantity("youngs_modulus", "material", D::pressure, positive(), "69 GPa",
                          "Young's modulus E (with nu gives the shear modulus)", FIELD(material.youngs_modulus)));
@@ -278,7 +278,7 @@ const std::vector<Key>& keys() {
                          "tangent modulus E_tan past yield", FIELD(material.tangent_modulus)));
     k.push_back(quantity("hardening_beta", "material", D::none, closed(0.0, 1.0), "1",
                          "share of isotropic hardening: 1 isotropic, 0 kinematic", FIELD(material.hardening_beta)));
-    k.push_back(quantity("sound_speed", "material", D::speed, positive(), "5350 m/s",
+    k.push_back(quantity("sound_speed", "material", D::speed, Range{0.0, 1e5, true, false}, "5350 m/s",
                          "bulk sound speed c0 (Us = c0 + s up)", FIELD(material.sound_speed)));
     k.push_back(quantity("hugoniot_slope", "material", D::none, closed(1.0, 5.0), "1.34",
                          "Us-up slope s (the paper's lambda)", FIELD(material.hugoniot_slope)));
@@ -436,6 +436,7 @@ std::vector<Entry> read_entries(const std::string& text, const std::string& name
     if (eq == std::string::npos)
       throw SceneError(at.where + ": expected 'key = value', got '" + line + "'");
     Entry e{trim(line.substr(0, eq)), trim(line.substr(eq + 1)), at};
+    if (e.key.empty()) throw SceneError(at.where + ": a key is missing before '='");
     if (!valid_key_name(e.key)) throw SceneError(at.where + ": '" + e.key + "' is not a key name");
     if (e.value.empty()) throw error_at(at, e.key, "missing value");
     out.push_back(std::move(e));
@@ -574,7 +575,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   std::ostringstream buffer;
   buffer << in.rdbuf();
   if (in.bad()) throw SceneError(path + ": cannot read the scene file");
-  const std::string text = buffer.str();
+  std::string text = buffer.str();
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // a UTF-8 byte-order mark (some editors write one)
   if (text.find('\0') != std::string::npos) throw SceneError(path + ": is not a text file (it holds NUL bytes)");
   if (trim(text).empty()) throw SceneError(path + ": the scene file is empty; an empty scene is most likely a mistake "
                                                   "(write at least one key, e.g. 'velocity = 1000 m/s')");
