@@ -16,7 +16,14 @@ void check(herr_t status, const std::string& what) {
   if (status < 0) throw std::runtime_error("cannot " + what);
 }
 
-void silence_error_stack() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+void prepare_library() {
+  static const bool once = [] {
+    H5dont_atexit();  // must come before the library's first initialisation
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)once;
+}
 
 namespace {
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mpmshock/hdf5_io.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/setup.hpp"
@@ -114,6 +115,7 @@ void report(const mpmshock::RunResult& result) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mpmshock::h5::prepare_library();
   const Args args = parse_args(argc, argv);
   if (args.threads > 0) omp_set_num_threads(args.threads);
   mpmshock::install_stop_handlers();

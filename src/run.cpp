@@ -197,6 +197,17 @@ class Progress {
   WallClock::time_point wall_start_, last_;
 };
 
+// A material point colder than 0 K (its energy below the 0 K isotherm at its volume) is not
+// physics; checked at every sample, where the temperatures are computed anyway. Returns the
+// lowest index of such a point, or kNoPoint.
+std::size_t first_point_below_zero_kelvin(const Particles& p, const HugoniotTemperature& thermal) {
+  std::size_t first = std::numeric_limits<std::size_t>::max();
+#pragma omp parallel for schedule(static) reduction(min : first)
+  for (std::size_t q = 0; q < p.size(); ++q)
+    if (!(thermal.temperature(p.J(q), p.energy[q]) > 0.0)) first = q < first ? q : first;
+  return first;
+}
+
 // The output files of a run directory, appended to as the run goes.
 class Outputs {
  public:
@@ -212,6 +223,8 @@ class Outputs {
 
   // Snapshots already in the directory that the XDMF index must keep listing (restart).
   void keep_listing(std::vector<XdmfSnapshot> earlier) { xdmf_ = std::move(earlier); }
+
+  const HugoniotTemperature* thermal() const { return thermal_.get(); }
 
   void sample(const Simulation& sim, double dt) {
     write_region_rows(regions_.get(), sim.time(), sample_regions(sim.particles(), scene_.regions, thermal_.get()));
@@ -285,6 +298,7 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
   Progress progress(!options.quiet, sim.time(), end_time);
   const auto wall_start = WallClock::now();
   StepStatus status;
+  std::size_t cold_point = std::numeric_limits<std::size_t>::max();
   while (sim.time() < end_time * (1.0 - 1e-12)) {
     // Land exactly on output times; split a step that would leave a sliver into two equal ones.
     const double t_event = std::min({end_time, event_time(sch.next_sample, scene.sample_interval),
@@ -301,6 +315,13 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
     if (sim.time() >= event_time(sch.next_sample, scene.sample_interval) - tol) {
       out.sample(sim, dt);
       sch.next_sample = next_event_after(sim.time(), scene.sample_interval, tol);
+      if (out.thermal()) {
+        const std::size_t cold = first_point_below_zero_kelvin(sim.particles(), *out.thermal());
+        if (cold != std::numeric_limits<std::size_t>::max()) {
+          cold_point = cold;
+          break;
+        }
+      }
     }
     if (sim.time() >= event_time(sch.next_snapshot, scene.snapshot_interval) - tol) {
       sch.next_snapshot = next_event_after(sim.time(), scene.snapshot_interval, tol);
@@ -316,6 +337,18 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
     result.failure = sim.describe(status);
     out.sample(sim, sch.last_dt);
     take_snapshot();  // the state that went wrong, for inspection
+  } else if (cold_point != std::numeric_limits<std::size_t>::max()) {
+    const Particles& p = sim.particles();
+    const std::size_t q = cold_point;
+    std::ostringstream why;
+    why << "step " << sim.steps() << ", t = " << sim.time() << " s: material point " << p.id[q]
+        << " reached a non-physical state (temperature " << out.thermal()->temperature(p.J(q), p.energy[q])
+        << " K: its internal energy " << p.energy[q] << " J/kg is below the 0 K isotherm at J = " << p.J(q)
+        << "); at (" << p.x[q] << ", " << p.y[q] << ") m with pressure " << p.pressure[q]
+        << " Pa. Typical cause: a shock without enough artificial viscosity";
+    result.exit_code = kExitNumerical;
+    result.failure = why.str();
+    take_snapshot();  // the state that went wrong, for inspection (its sample is written)
   } else if (g_stop_signal != 0 && sim.time() < end_time * (1.0 - 1e-12)) {
     const int sig = g_stop_signal;
     result.exit_code = 128 + sig;

@@ -154,7 +154,7 @@ void write_grid(hid_t file, const SnapshotOptions& o) {
 
 void write_snapshot(const std::string& path, const Particles& p, const HugoniotTemperature* thermal,
                     const RunState& run, const SnapshotOptions& options) {
-  h5::silence_error_stack();
+  h5::prepare_library();
   const std::string tmp = path + ".tmp";
   try {
     {
@@ -180,12 +180,13 @@ void write_snapshot(const std::string& path, const Particles& p, const HugoniotT
   } catch (const std::runtime_error& e) {
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("writing snapshot " + path + ": " + e.what());
+    throw std::runtime_error("writing snapshot " + path + ": " + e.what() +
+                             " (is the disk full or the directory not writable?); earlier snapshots are complete");
   }
 }
 
 SnapshotHeader read_snapshot_header(const std::string& path) {
-  h5::silence_error_stack();
+  h5::prepare_library();
   try {
     Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open it as HDF5");
     SnapshotHeader h;
@@ -199,7 +200,7 @@ SnapshotHeader read_snapshot_header(const std::string& path) {
 }
 
 Restart read_snapshot(const std::string& path) {
-  h5::silence_error_stack();
+  h5::prepare_library();
   try {
     Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open it as HDF5");
     const hid_t f = file.get();

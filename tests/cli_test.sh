@@ -86,4 +86,29 @@ grep -q '"exit_code": 143' stopped/summary.json || fail "SIGTERM: summary.json l
 ls stopped/*.tmp >/dev/null 2>&1 && fail "SIGTERM left temporary files"
 expect 0 "restarted at" -- --restart stopped/snapshot_00001.h5 --quiet --set end_time=100ns
 
+# A full disk: with a file-size limit (and SIGXFSZ ignored) writes fail as on a full disk; the run
+# ends with exit 4 and a clear message, leaving no half-written file.
+( ulimit -f 400; trap '' XFSZ; "$bin" tiny.scene --quiet --set output_dir=full ) >full.out 2>&1
+rc=$?
+[ "$rc" -eq 4 ] || fail "file-size limit: exit $rc, expected 4: $(cat full.out)"
+grep -q "writing snapshot .*snapshot_00000.h5: .*disk full" full.out || fail "file-size limit: no clear message: $(cat full.out)"
+ls full/*.tmp >/dev/null 2>&1 && fail "file-size limit left a temporary file"
+# A real small file system, where this machine lets us mount one: the snapshots written before
+# it filled up stay complete and readable.
+mkdir -p small
+if mount -t tmpfs -o size=3M tmpfs small 2>/dev/null; then
+  "$bin" tiny.scene --quiet --set output_dir=small/run --set snapshot_interval=10ns >small.out 2>&1
+  rc=$?
+  [ "$rc" -eq 4 ] || fail "full tmpfs: exit $rc, expected 4"
+  for f in small/run/snapshot_*.h5; do
+    h5dump -H "$f" >/dev/null 2>&1 || fail "full tmpfs: $f is not a readable HDF5 file"
+  done
+  [ "$(ls small/run/snapshot_*.h5 | wc -l)" -ge 2 ] || fail "full tmpfs: fewer than 2 complete snapshots"
+  umount small
+else
+  echo "note: cannot mount a tmpfs here; the full-file-system check ran with a file-size limit only"
+fi
+# A directory that cannot be created or written.
+expect 4 "cannot create output_dir '/proc/mpmshock-test" -- tiny.scene --quiet --set output_dir=/proc/mpmshock-test/out
+
 if [ "$failures" -eq 0 ]; then echo "all checks passed"; else echo "$failures check(s) failed"; exit 1; fi

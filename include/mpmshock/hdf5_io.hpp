@@ -28,8 +28,10 @@ class Handle {
 
 void check(herr_t status, const std::string& what);
 
-// Errors as exceptions with our own words, not HDF5's stack dump on stderr.
-void silence_error_stack();
+// Call before any other HDF5 use: errors become exceptions with our own words (not HDF5's stack
+// dump on stderr), and HDF5 registers no exit handler. Every file is closed by its Handle; after a
+// write fails (a full disk), HDF5 1.10's exit handler would crash closing that file again.
+void prepare_library();
 
 struct Compression {
   int level = 0;  // gzip level with byte shuffle; 0: stored as is

@@ -1,0 +1,42 @@
+// When numbers go bad the step says so at once, naming the point: a NaN, J <= 0, compression past
+// the Hugoniot's limit, a runaway speed. Each fault is planted in one point of a healthy run.
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "check.hpp"
+#include "mpmshock/simulation.hpp"
+
+using namespace mpmshock;
+
+namespace {
+
+void expect_stop(const char* what, const std::function<void(Particles&)>& plant, const char* reason) {
+  const Scene scene = parse_scene(
+      "velocity = 1000 m/s\nporosity = 1\nwidth = 40 um\ntarget_height = 100 um\nflyer_height = 100 um\n"
+      "cell_size = 10 um\nend_time = 50 ns\n",
+      "faults");
+  InitialState initial = build_initial_state(scene);
+  constexpr std::size_t victim = 123;
+  plant(initial.particles);
+  Simulation sim(scene, initial.grid, std::move(initial.particles));
+  const StepStatus s = sim.step(sim.stable_time_step());
+  const std::string text = sim.describe(s);
+  std::printf("%s: %s\n", what, text.c_str());
+  CHECK(s.code == StepStatus::Code::bad_state);
+  CHECK(s.point == victim);
+  CHECK(text.find("material point 123 ") != std::string::npos);
+  CHECK(text.find(reason) != std::string::npos);
+  CHECK(text.find("position (") != std::string::npos);
+}
+
+}  // namespace
+
+int main() {
+  expect_stop("NaN energy", [](Particles& p) { p.energy[123] = std::numeric_limits<double>::quiet_NaN(); },
+              "non-finite pressure or energy");
+  expect_stop("inverted point", [](Particles& p) { p.Fyy[123] = -0.5; }, "J = det F <= 0");
+  expect_stop("over-compressed point", [](Particles& p) { p.Fyy[123] = 0.2; }, "compressed past the Hugoniot's limit");
+  expect_stop("runaway speed", [](Particles& p) { p.vy[123] = 1e6; }, "runaway speed");
+  return check::result();
+}
