@@ -468,6 +468,8 @@ std::string describe_setup(const Scene& s, const InitialState& st) {
   const auto steps = static_cast<long long>(std::ceil(s.end_time / dt0));
   out << "time step: " << dt0 * 1e9 << " ns at start (cfl " << s.cfl << ", fastest signal " << signal
       << " m/s); at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
+  if (s.cfl > 0.5)
+    out << "warning: cfl " << s.cfl << " > 0.5 was measured unstable in jetting cases (docs/stability.md)\n";
   out << "effects: plasticity " << (s.effects.plasticity ? "on" : "off") << ", thermal "
       << (s.effects.thermal ? "on" : "off") << ", artificial viscosity "
       << (s.effects.artificial_viscosity ? "on" : "off") << ", voids " << (s.porosity > 1.0 ? "on" : "off")
@@ -494,6 +496,9 @@ std::string describe_result(const RunResult& r) {
 
 RunResult run_scene(const Scene& scene, const RunOptions& options) {
   InitialState initial = build_initial_state(scene);  // SceneError on voids that cannot fit
+  if (scene.cfl > 0.5 && !options.quiet)
+    std::fprintf(stderr, "mpmshock: warning: cfl %g > 0.5 was measured unstable in jetting cases "
+                 "(docs/stability.md); the run stops with a diagnostic if it goes wrong\n", scene.cfl);
   const fs::path dir(scene.output_dir);
   prepare_output_dir(scene, options.force);
 

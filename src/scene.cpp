@@ -242,7 +242,7 @@ const std::vector<Key>& keys() {
                          FIELD(cfl)));
     k.push_back(choice<UpdateScheme>("update_scheme", "numerics",
                                      {{"musl", UpdateScheme::musl}, {"usl", UpdateScheme::usl}}, "musl",
-                                     "musl: stress from the time-centred re-mapped velocity (conserves energy); usl: classic update stress last",
+                                     "musl: stress from the re-mapped velocity, energy from the exact work of the forces (conserved); usl: classic",
                                      FIELD(update_scheme)));
     k.push_back(choice<ShapeFunction>(
         "shape_function", "numerics",

@@ -82,7 +82,7 @@ void write_particles(hid_t file, const Particles& p, const HugoniotTemperature* 
   doubles("deformation_gradient", rows_of(n, {&p.Fxx, &p.Fxy, &p.Fyx, &p.Fyy}), {N, 2, 2}, "",
           "F, in-plane (F_zz = 1), F[i][j] = dx_i/dX_j", chosen);
   doubles("velocity_gradient", rows_of(n, {&p.Lxx, &p.Lxy, &p.Lyx, &p.Lyy}), {N, 2, 2}, "1/s",
-          "time-centred L = grad v of the last step, L[i][j] = dv_i/dx_j", chosen);
+          "L = grad v of the last step, L[i][j] = dv_i/dx_j", chosen);
 }
 
 void write_bodies(hid_t g, const RunState& run) {

@@ -26,6 +26,16 @@ done < expected.txt
 present=$(ls -d ./*.scene | wc -l)
 [ "$present" -eq "$listed" ] || fail "the corpus has $present scenes but the manifest lists $listed"
 
+# Inputs the fuzzer once crashed on (scripts/fuzz.sh keeps them): parsed or refused, never a crash.
+if [ -d "$data/fuzz-crashers" ]; then
+  for file in "$data"/fuzz-crashers/*; do
+    [ -f "$file" ] || continue
+    "$bin" "$file" --check >/dev/null 2>&1
+    rc=$?
+    [ "$rc" -eq 0 ] || [ "$rc" -eq 2 ] || fail "fuzz crasher $(basename "$file"): exit $rc"
+  done
+fi
+
 cd "$data/good" || exit 1
 for file in *.scene; do
   "$bin" "$file" --quiet --set "output_dir=$work/good" --force >/dev/null 2>"$work/err" ||
