@@ -23,8 +23,7 @@ struct GridGeometry {
 };
 
 // Nodal fields, one array each. After the momentum update (fx, fy) hold the accelerations f/m and
-// (vx, vy) the updated velocities; (px, py) are reused for the re-mapped momentum and then for
-// the time-centred velocity.
+// (vx, vy) the updated velocities; (px, py) are reused for the re-mapped momentum and velocity.
 struct Grid {
   GridGeometry geo;
   std::vector<double> m;       // nodal mass m_i

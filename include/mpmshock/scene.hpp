@@ -12,8 +12,8 @@
 namespace mpmshock {
 
 // USL: the stress update uses the grid velocities right after the momentum update.
-// MUSL (default): it uses the time-centred nodal velocity, half the velocity the step started from
-// and half the one re-mapped from the updated point velocities; this conserves energy exactly.
+// MUSL (default): it uses the nodal velocity re-mapped from the updated point velocities, and the
+// energy update the exact work of the step's forces (kinetic + internal energy conserved).
 enum class UpdateScheme { musl, usl };
 
 // Shape functions (see shape.hpp): quadratic B-splines (default), uniform GIMP, or the paper's 4-node
