@@ -75,17 +75,23 @@ struct Key {
   std::function<std::string(const Scene&)> get;  // resolved value, SI
 };
 
-template <class Ref>
-Key quantity(std::string name, std::string group, Dimension dim, Range range, std::string def, std::string meaning,
-             Ref ref) {
+// What every key has: its name, group, kind, default and meaning.
+Key describe_key(Kind kind, const std::string& name, std::string group, std::string def, std::string meaning) {
   Key k;
   k.name = name;
   k.group = std::move(group);
-  k.kind = Kind::quantity;
-  k.dim = dim;
-  k.range = range;
+  k.kind = kind;
   k.default_text = std::move(def);
   k.meaning = std::move(meaning);
+  return k;
+}
+
+template <class Ref>
+Key quantity(std::string name, std::string group, Dimension dim, Range range, std::string def, std::string meaning,
+             Ref ref) {
+  Key k = describe_key(Kind::quantity, name, std::move(group), std::move(def), std::move(meaning));
+  k.dim = dim;
+  k.range = range;
   k.set = [name, dim, range, ref](Scene& s, const std::string& text, const Origin& at) {
     double v = 0.0;
     try {
@@ -110,13 +116,8 @@ Key quantity(std::string name, std::string group, Dimension dim, Range range, st
 
 template <class Ref>
 Key integer(std::string name, std::string group, Range range, std::string def, std::string meaning, Ref ref) {
-  Key k;
-  k.name = name;
-  k.group = std::move(group);
-  k.kind = Kind::integer;
+  Key k = describe_key(Kind::integer, name, std::move(group), std::move(def), std::move(meaning));
   k.range = range;
-  k.default_text = std::move(def);
-  k.meaning = std::move(meaning);
   k.set = [name, range, ref](Scene& s, const std::string& text, const Origin& at) {
     std::int64_t v = 0;
     const char* first = text.data();
@@ -136,12 +137,7 @@ Key integer(std::string name, std::string group, Range range, std::string def, s
 
 template <class Ref>
 Key flag(std::string name, std::string group, std::string def, std::string meaning, Ref ref) {
-  Key k;
-  k.name = name;
-  k.group = std::move(group);
-  k.kind = Kind::flag;
-  k.default_text = std::move(def);
-  k.meaning = std::move(meaning);
+  Key k = describe_key(Kind::flag, name, std::move(group), std::move(def), std::move(meaning));
   k.choices = "on|off";
   k.set = [name, ref](Scene& s, const std::string& text, const Origin& at) {
     if (text == "on" || text == "yes" || text == "true") {
@@ -158,12 +154,7 @@ Key flag(std::string name, std::string group, std::string def, std::string meani
 
 template <class Ref>
 Key text(std::string name, std::string group, std::string def, std::string meaning, Ref ref) {
-  Key k;
-  k.name = name;
-  k.group = std::move(group);
-  k.kind = Kind::text;
-  k.default_text = std::move(def);
-  k.meaning = std::move(meaning);
+  Key k = describe_key(Kind::text, name, std::move(group), std::move(def), std::move(meaning));
   k.set = [ref](Scene& s, const std::string& value, const Origin&) { ref(s) = value; };
   k.get = [ref](const Scene& s) { return ref(s); };
   return k;
@@ -172,12 +163,7 @@ Key text(std::string name, std::string group, std::string def, std::string meani
 template <class Enum, class Ref>
 Key choice(std::string name, std::string group, std::vector<std::pair<std::string, Enum>> options, std::string def,
            std::string meaning, Ref ref) {
-  Key k;
-  k.name = name;
-  k.group = std::move(group);
-  k.kind = Kind::choice;
-  k.default_text = std::move(def);
-  k.meaning = std::move(meaning);
+  Key k = describe_key(Kind::choice, name, std::move(group), std::move(def), std::move(meaning));
   for (const auto& [word, value] : options) k.choices += (k.choices.empty() ? "" : "|") + word;
   k.set = [name, options, ref](Scene& s, const std::string& value, const Origin& at) {
     for (const auto& [word, e] : options) {

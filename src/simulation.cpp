@@ -51,7 +51,7 @@ Simulation::Simulation(const Scene& scene, const GridGeometry& grid, Particles p
 
 StepStatus Simulation::step(double dt) {
   if (!kernels_.bin(bins_, points_, grid_.geo))                   // strips for race-free scatter
-    return {StepStatus::Code::left_grid, 0};
+    return {StepStatus::Code::left_grid, points_.size()};  // moves check this; here only a bad restart
   const int rows_begin = bins_.row_begin(), rows_end = bins_.row_end();
   grid_.reset(rows_begin, rows_end);
   kernels_.to_grid(points_, bins_, grid_);                        // P2G: m_i, p_i, f_i
