@@ -15,7 +15,8 @@ double update_point(PointState& st, const Model& model, double dt) {
   // viscous work alike), which is what the points' kinetic energy lost.
   st.E += st.work;
 
-  // Kinematics: F^{n+1} = (I + dt L) F^n.
+  // Kinematics: F^{n+1} = (I + dt L) F^n, written out: the same with Eigen::Matrix2d measured 40 %
+  // slower per point-step here (it stops this function from being inlined into the point loop).
   const double Axx = 1.0 + dt * st.Lxx, Axy = dt * st.Lxy, Ayx = dt * st.Lyx, Ayy = 1.0 + dt * st.Lyy;
   const double Fxx = Axx * st.Fxx + Axy * st.Fyx, Fxy = Axx * st.Fxy + Axy * st.Fyy;
   const double Fyx = Ayx * st.Fxx + Ayy * st.Fyx, Fyy = Ayx * st.Fxy + Ayy * st.Fyy;

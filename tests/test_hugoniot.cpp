@@ -1,6 +1,7 @@
 // Symmetric impact of solid plates in a narrow periodic column, against the Rankine-Hugoniot jump
 // conditions (physics-notes section 3): plateau density, pressure and temperature, shock speed, and
 // conservation of mass, momentum and energy.
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cstdio>
 #include <vector>
@@ -77,16 +78,16 @@ void run_case(const Case& c) {
       next += 10e-9;
     }
   }
-  // Least-squares slope of the front: the lab speed Us - v (the upstream target moves at -v).
-  const double n = static_cast<double>(ts.size());
-  double st = 0, sy = 0, stt = 0, sty = 0;
+  // Least-squares line through the front positions: its slope is the lab speed Us - v (the
+  // upstream target moves at -v).
+  Eigen::MatrixXd A(ts.size(), 2);
+  Eigen::VectorXd b(ts.size());
   for (std::size_t k = 0; k < ts.size(); ++k) {
-    st += ts[k];
-    sy += ys[k];
-    stt += ts[k] * ts[k];
-    sty += ts[k] * ys[k];
+    A(static_cast<Eigen::Index>(k), 0) = ts[k];
+    A(static_cast<Eigen::Index>(k), 1) = 1.0;
+    b(static_cast<Eigen::Index>(k)) = ys[k];
   }
-  const double Us_measured = (n * sty - st * sy) / (n * stt - st * st) + v;
+  const double Us_measured = A.colPivHouseholderQr().solve(b)(0) + v;
 
   // Plateau: the middle half of the shocked target, away from the impact plane and the front.
   const Particles& p = sim.particles();

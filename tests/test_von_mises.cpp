@@ -1,6 +1,7 @@
 // Radial return with linear mixed hardening: elastic states untouched, plastic states end on the
 // yield surface, isotropic and kinematic hardening as specified, objectivity of the Jaumann rate,
 // and yield onset in uniaxial strain.
+#include <Eigen/Dense>
 #include <random>
 
 #include "check.hpp"
@@ -74,6 +75,20 @@ int main() {
     const double coarse = drift(1000), fine = drift(10000);
     CHECK(fine < 1e-3);
     CHECK(coarse / fine > 8.0 && coarse / fine < 12.0);
+
+    // And it converges to the exact rotation s(t) = R s R^T, R = exp(W t), W = [[0, w], [-w, 0]]:
+    // a rotation by -w t in the plane, checked against Eigen's rotation of the full tensor.
+    Deviator s{100e6, -60e6, 40e6};
+    const double w = 1e6, t = 0.3e-6;
+    const int steps = 100000;
+    for (int k = 0; k < steps; ++k) s = s + (t / steps) * spin_rate(s, w);
+    Eigen::Matrix2d s0;
+    s0 << 100e6, 40e6, 40e6, -60e6;
+    const Eigen::Matrix2d R = Eigen::Rotation2Dd(-w * t).toRotationMatrix();
+    const Eigen::Matrix2d exact = R * s0 * R.transpose();
+    CHECK_NEAR(s.xx, exact(0, 0), 1e-4 * 100e6);
+    CHECK_NEAR(s.yy, exact(1, 1), 1e-4 * 100e6);
+    CHECK_NEAR(s.xy, exact(0, 1), 1e-4 * 100e6);
   }
 
   // Uniaxial strain (the shock's loading path): elastic until sigma_xx - sigma_yy reaches sigma_Y0,
