@@ -442,8 +442,6 @@ void install_stop_handlers() {
   std::signal(SIGTERM, on_stop_signal);
 }
 
-int stop_signal() { return g_stop_signal; }
-
 std::string describe_setup(const Scene& s, const InitialState& st) {
   std::ostringstream out;
   const GridGeometry& g = st.grid;

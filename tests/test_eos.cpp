@@ -54,5 +54,11 @@ int main() {
     CHECK_REL(eos.sound_speed_squared(J, P), c2_numeric, 1e-5);
   }
   CHECK_REL(eos.limiting_compression(), 1 - 1 / s, 1e-15);
+  // The constitutive update's combined evaluation gives the same state.
+  for (double J : {0.7, 0.9, 1.0, 1.05}) {
+    const MieGruneisen::State st = eos.state(J, 1.5e5);
+    CHECK(st.pressure == eos.pressure(J, 1.5e5));
+    CHECK(st.sound_speed_squared == eos.sound_speed_squared(J, st.pressure));
+  }
   return check::result();
 }

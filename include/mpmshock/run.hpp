@@ -22,8 +22,6 @@ enum ExitCode : int {
 
 // SIGINT and SIGTERM ask a running run to stop after its current step; a second one kills at once.
 void install_stop_handlers();
-// The signal that asked to stop, or 0.
-int stop_signal();
 
 struct RunOptions {
   bool quiet = false;  // no progress line
