@@ -385,8 +385,21 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
   return result;
 }
 
-// Keeps the header and the rows of a CSV whose time (first column) is not after t; rewrites the
-// file atomically. Returns the number of rows dropped.
+// A CSV row whose time (first column) is after t; rows carry 10 significant digits of time.
+bool row_after(const std::string& line, double t) { return std::strtod(line.c_str(), nullptr) > t * (1.0 + 1e-9); }
+
+// The rows of a CSV after t (the header is not a row).
+std::size_t count_rows_after(const fs::path& path, double t) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::size_t n = 0;
+  while (std::getline(in, line)) n += row_after(line, t);
+  return n;
+}
+
+// Keeps the header and the rows of a CSV that are not after t; rewrites the file atomically.
+// Returns the number of rows dropped.
 std::size_t truncate_rows_after(const fs::path& path, double t) {
   std::ifstream in(path);
   if (!in) return 0;
@@ -399,8 +412,7 @@ std::size_t truncate_rows_after(const fs::path& path, double t) {
       header = false;
       continue;
     }
-    // Rows carry 10 significant digits of time.
-    if (std::strtod(line.c_str(), nullptr) <= t * (1.0 + 1e-9)) kept += line + "\n";
+    if (!row_after(line, t)) kept += line + "\n";
     else ++dropped;
   }
   in.close();
@@ -541,14 +553,8 @@ RunResult restart_run(const std::string& snapshot, const std::vector<std::string
     std::vector<fs::path> later;
     for (const auto& e : fs::directory_iterator(dir))
       if (snapshot_number(e.path()) > index) later.push_back(e.path());
-    std::size_t later_rows = 0;
     if (!options.force) {
-      for (const char* csv : {"regions.csv", "conservation.csv"}) {
-        std::ifstream in(dir / csv);
-        std::string line;
-        std::getline(in, line);
-        while (std::getline(in, line)) later_rows += std::strtod(line.c_str(), nullptr) > t0 * (1.0 + 1e-9);
-      }
+      const std::size_t later_rows = count_rows_after(dir / "regions.csv", t0) + count_rows_after(dir / "conservation.csv", t0);
       if (!later.empty() || later_rows > 0)
         throw SceneError(snapshot + ": restarting here discards " + std::to_string(later.size()) +
                          " later snapshot(s) and " + std::to_string(later_rows) +
