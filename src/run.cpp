@@ -544,6 +544,7 @@ RunResult restart_run(const std::string& snapshot, const std::vector<std::string
                                    [](const std::string& o) { return o.rfind("output_dir", 0) == 0; });
   const fs::path dir = new_dir ? fs::path(scene.output_dir) : fs::absolute(snapshot).parent_path();
   const int index = r.run.schedule.snapshot_index;
+  const GridGeometry grid = build_grid_geometry(scene);
   std::vector<XdmfSnapshot> earlier;
   bool append = false;
   if (new_dir) {
@@ -568,14 +569,13 @@ RunResult restart_run(const std::string& snapshot, const std::vector<std::string
       const fs::path p = dir / snapshot_name(k);
       if (!fs::exists(p)) continue;
       const SnapshotHeader h = read_snapshot_header(p.string());
-      earlier.push_back({p.filename().string(), h.time, h.points, false, 0, 0, 0.0, 0.0});
+      earlier.push_back({p.filename().string(), h.time, h.points, h.grid, grid.nx, grid.ny, grid.y_min, grid.h});
     }
   }
   r.run.scene_text = resolved_scene(scene);
   write_text(dir / "scene.txt", r.run.scene_text);
   if (!fs::exists(dir / "voids.csv")) write_voids(dir / "voids.csv", r.run.flyer, r.run.target);
 
-  const GridGeometry grid = build_grid_geometry(scene);
   Simulation sim(scene, grid, std::move(r.points), r.run.clock);
   Outputs out(scene, dir, append);
   out.keep_listing(std::move(earlier));

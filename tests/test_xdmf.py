@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The XDMF index of a run: well-formed XML, one time step per snapshot with the snapshot's time,
+"""The XDMF index of a run, continued by a restart: well-formed XML, one time step per snapshot with the snapshot's time,
 and every HDF5 dataset it names exists with the shape it states (hyperslabs within bounds).
 
 usage: test_xdmf.py MPMSHOCK_BINARY SCENE
@@ -82,6 +82,9 @@ def main():
         subprocess.run([binary, scene, "--quiet", "--set", "output_dir=" + run_dir, "--set", "snapshot_grid=on",
                         "--set", "end_time=40ns", "--set", "snapshot_interval=20ns"], check=True,
                        stdout=subprocess.DEVNULL)
+        # Continued by a restart, whose index must keep listing the earlier snapshots and grids.
+        subprocess.run([binary, "--restart", os.path.join(run_dir, "snapshot_00002.h5"), "--quiet",
+                        "--set", "end_time=60ns"], check=True, stdout=subprocess.DEVNULL)
         tree = ET.parse(os.path.join(run_dir, "snapshots.xdmf"))  # raises on malformed XML
         root = tree.getroot()
         collections = root.findall("./Domain/Grid")
