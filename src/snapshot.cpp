@@ -216,8 +216,6 @@ Restart read_snapshot(const std::string& path) {
     Handle rg(H5Gopen2(f, "restart", H5P_DEFAULT), H5Gclose, "open /restart");
     const hid_t g = rg.get();
     run.clock.max_signal = h5::read_double_attribute(g, "max_signal");
-    run.schedule.next_sample = h5::read_int_attribute(g, "next_sample");
-    run.schedule.next_snapshot = h5::read_int_attribute(g, "next_snapshot");
     run.schedule.snapshot_index = static_cast<int>(h5::read_int_attribute(g, "snapshot_index"));
     run.schedule.last_dt = h5::read_double_attribute(g, "last_dt");
     const std::vector<double> t = h5::read_doubles_attribute(g, "initial_totals");

@@ -50,7 +50,8 @@ struct Restart {
   Particles points;
 };
 
-// Reads a snapshot back into the state it was written from. Throws std::runtime_error naming the
+// Reads a snapshot back into the state it was written from (the next sample and snapshot times
+// are left to the caller, which derives them from the time as the time loop does). Throws std::runtime_error naming the
 // path and what is wrong (not a snapshot, a missing dataset, a bad shape).
 Restart read_snapshot(const std::string& path);
 
