@@ -4,7 +4,15 @@
 // `repeats` times, interleaved, and the best run counts.
 //
 // usage: mpmshock_bench [--points N] [--steps N] [--repeats N] [--threads N]
+//        mpmshock_bench threads [--repeats N]
+//
+// The `threads` mode measures the default scene and a 640 k-point solid scene on 1 thread, on all
+// threads, and on all threads with the thread tuner (how mpmshock runs), each on an idle machine
+// and with a busy process beside it (a loop on one core, started and stopped by the benchmark).
 #include <omp.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -16,6 +24,7 @@
 #include "mpmshock/regions.hpp"
 #include "mpmshock/simulation.hpp"
 #include "mpmshock/temperature.hpp"
+#include "mpmshock/thread_tuner.hpp"
 
 using namespace mpmshock;
 using WallClock = std::chrono::steady_clock;
@@ -60,9 +69,88 @@ double point_steps_per_second(const Scene& scene, int steps, std::size_t& points
   return static_cast<double>(points) * steps / seconds;
 }
 
+// A process that keeps one core busy until it is killed: the competing load of `threads`.
+pid_t start_busy_process() {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    volatile unsigned long spin = 0;
+    for (;;) spin = spin + 1;
+  }
+  return pid;
+}
+void stop_busy_process(pid_t pid) {
+  if (pid <= 0) return;
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+}
+
+// Point-steps per second of `steps` steps after `warmup` steps, with `threads` threads, or with the
+// thread tuner choosing up to `threads` (as mpmshock runs).
+double rate_with_threads(const Scene& scene, int warmup, int steps, int threads, bool tuned) {
+  omp_set_num_threads(threads);
+  InitialState initial = build_initial_state(scene);
+  Simulation sim(scene, initial.grid, std::move(initial.particles));
+  for (int k = 0; k < warmup; ++k) sim.step(sim.stable_time_step());
+  ThreadTuner tuner(tuned ? threads : 1);
+  const auto t0 = WallClock::now();
+  for (int k = 0; k < steps; ++k) {
+    if (tuned) omp_set_num_threads(tuner.threads());
+    const auto s0 = WallClock::now();
+    sim.step(sim.stable_time_step());
+    tuner.record(std::chrono::duration<double>(WallClock::now() - s0).count());
+  }
+  const double seconds = std::chrono::duration<double>(WallClock::now() - t0).count();
+  omp_set_num_threads(threads);
+  return static_cast<double>(sim.particles().size()) * steps / seconds;
+}
+
+int threads_mode(int repeats) {
+  const int all = omp_get_max_threads();
+  struct Case {
+    const char* name;
+    std::string text;
+    int warmup, steps;
+  };
+  const std::vector<Case> cases = {
+      {"default scene (36 k points)",
+       "velocity = 1000 m/s\nporosity = 1.1\nvoid_radius = 25 um\nwidth = 0.5 mm\ntarget_height = 1 mm\n"
+       "flyer_height = 1 mm\ncell_size = 10 um\nend_time = 300 ns\n",
+       20, 400},
+      {"solid plates (640 k points)",
+       "porosity = 1\nwidth = 1 mm\ntarget_height = 2 mm\nflyer_height = 2 mm\ncell_size = 5 um\n"
+       "end_time = 250 ns\n",
+       5, 120},
+  };
+  std::printf("mpmshock_bench threads: point-steps per second (millions), best of %d, %d threads at most\n\n",
+              repeats, all);
+  std::printf("| scene | machine | 1 thread | %d threads, fixed | %d threads, tuned (mpmshock) |\n", all, all);
+  std::printf("|---|---|---|---|---|\n");
+  for (const Case& c : cases) {
+    const Scene scene = parse_scene(c.text, "bench");
+    for (bool busy : {false, true}) {
+      const pid_t load = busy ? start_busy_process() : 0;
+      double one = 0.0, fixed = 0.0, tuned = 0.0;
+      for (int r = 0; r < repeats; ++r) {
+        one = std::max(one, rate_with_threads(scene, c.warmup, c.steps, 1, false));
+        fixed = std::max(fixed, rate_with_threads(scene, c.warmup, c.steps, all, false));
+        tuned = std::max(tuned, rate_with_threads(scene, c.warmup, c.steps, all, true));
+      }
+      stop_busy_process(load);
+      std::printf("| %s | %s | %.2f | %.2f | %.2f |\n", c.name, busy ? "one core busy" : "idle", one / 1e6,
+                  fixed / 1e6, tuned / 1e6);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && !std::strcmp(argv[1], "threads")) {
+    const int repeats = (argc >= 4 && !std::strcmp(argv[2], "--repeats")) ? std::atoi(argv[3]) : 2;
+    return threads_mode(std::max(1, repeats));
+  }
   double width = 500e-6;
   int steps = 200, repeats = 3;
   for (int i = 1; i + 1 < argc; i += 2) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "mpmshock/parallel.hpp"
+
 namespace mpmshock {
 
 template <Strength S, bool Viscous>
@@ -62,7 +64,7 @@ StressUpdateResult update_all(Particles& p, const Model& model, double dt) {
   double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};
   const double speed_limit2 = model.speed_limit * model.speed_limit;
-#pragma omp parallel for schedule(static) reduction(max : max_signal) reduction(min : first_bad)
+#pragma omp parallel for schedule(dynamic, kChunk) reduction(max : max_signal) reduction(min : first_bad)
   for (std::size_t q = 0; q < p.size(); ++q) {
     PointState st{p.Lxx[q], p.Lxy[q], p.Lyx[q], p.Lyy[q], p.work[q], p.Fxx[q], p.Fxy[q], p.Fyx[q], p.Fyy[q],
                   p.energy[q], p.pressure[q], p.viscosity[q], {}, {}, 0.0};

@@ -11,7 +11,7 @@ Totals compute_totals(const Particles& p) {
   const std::size_t n = p.size();
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<Totals> partial(blocks);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 1)
   for (std::size_t b = 0; b < blocks; ++b) {
     Totals t;
     const std::size_t end = std::min(n, (b + 1) * kBlock);

@@ -1,6 +1,8 @@
 #include "mpmshock/grid.hpp"
 
-#include <algorithm>
+#include <cstddef>
+
+#include "mpmshock/parallel.hpp"
 
 namespace mpmshock {
 
@@ -9,8 +11,10 @@ Grid::Grid(const GridGeometry& g)
       vy(g.nodes()) {}
 
 void Grid::reset(int row_begin, int row_end) {
-  const std::size_t b = geo.node(0, row_begin), e = geo.node(0, row_end);
-  for (std::vector<double>* field : {&m, &px, &py, &fx, &fy}) std::fill(field->begin() + b, field->begin() + e, 0.0);
+  const auto b = static_cast<std::ptrdiff_t>(geo.node(0, row_begin));
+  const auto e = static_cast<std::ptrdiff_t>(geo.node(0, row_end));
+#pragma omp parallel for schedule(dynamic, kChunk)
+  for (std::ptrdiff_t i = b; i < e; ++i) m[i] = px[i] = py[i] = fx[i] = fy[i] = 0.0;
 }
 
 }  // namespace mpmshock

@@ -16,8 +16,8 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: mpmshock SCENE [--set key=value]... [--check] [--quiet] [--force] [--threads N]
-       mpmshock --restart SNAPSHOT [--set key=value]... [--quiet] [--force] [--threads N]
+constexpr const char* kUsage = R"(usage: mpmshock SCENE [--set key=value]... [--check] [--quiet] [--force] [--threads N [--fixed-threads]]
+       mpmshock --restart SNAPSHOT [--set key=value]... [--quiet] [--force] [--threads N [--fixed-threads]]
        mpmshock --help | --version | --keys
 
 Runs the material-point simulation of the impact that SCENE (a key = value file) describes and
@@ -31,7 +31,9 @@ summary.json into its output_dir.
   --force          replace the outputs of an earlier run in output_dir
   --restart SNAP   continue the run that snapshot SNAP belongs to, from its state, in its
                    directory (--set end_time=... to run longer; later outputs need --force)
-  --threads N      OpenMP threads (default: OMP_NUM_THREADS or all cores)
+  --threads N      use at most N threads (default: OMP_NUM_THREADS or all cores); the run
+                   measures its steps and uses fewer where that is faster (a busy machine)
+  --fixed-threads  use all the threads for every step, even where fewer would be faster
   --keys           print the table of scene keys (unit, default, meaning) and exit
   --help           this text
   --version        the version
@@ -45,7 +47,7 @@ struct Args {
   std::string scene;
   std::string restart;
   std::vector<std::string> overrides;
-  bool check = false, quiet = false, force = false;
+  bool check = false, quiet = false, force = false, fixed_threads = false;
   int threads = 0;
 };
 
@@ -83,6 +85,8 @@ Args parse_args(int argc, char** argv) {
       a.quiet = true;
     } else if (arg == "--force") {
       a.force = true;
+    } else if (arg == "--fixed-threads") {
+      a.fixed_threads = true;
     } else if (arg == "--threads") {
       const std::string v = value("--threads");
       char* end = nullptr;
@@ -121,7 +125,8 @@ int main(int argc, char** argv) {
   mpmshock::install_stop_handlers();
   try {
     if (!args.restart.empty()) {
-      const mpmshock::RunResult result = mpmshock::restart_run(args.restart, args.overrides, {args.quiet, args.force});
+      const mpmshock::RunOptions options{args.quiet, args.force, args.fixed_threads};
+      const mpmshock::RunResult result = mpmshock::restart_run(args.restart, args.overrides, options);
       report(result);
       return result.exit_code;
     }
@@ -131,7 +136,7 @@ int main(int argc, char** argv) {
       std::fputs(mpmshock::describe_setup(scene, state).c_str(), stdout);
       return mpmshock::kExitOk;
     }
-    const mpmshock::RunResult result = mpmshock::run_scene(scene, {args.quiet, args.force});
+    const mpmshock::RunResult result = mpmshock::run_scene(scene, {args.quiet, args.force, args.fixed_threads});
     report(result);
     return result.exit_code;
   } catch (const mpmshock::SceneError& e) {

@@ -18,10 +18,12 @@
 #include <stdexcept>
 
 #include "mpmshock/diagnostics.hpp"
+#include "mpmshock/parallel.hpp"
 #include "mpmshock/regions.hpp"
 #include "mpmshock/simulation.hpp"
 #include "mpmshock/snapshot.hpp"
 #include "mpmshock/temperature.hpp"
+#include "mpmshock/thread_tuner.hpp"
 #include "mpmshock/xdmf.hpp"
 
 namespace mpmshock {
@@ -202,7 +204,7 @@ class Progress {
 // lowest index of such a point, or kNoPoint.
 std::size_t first_point_below_zero_kelvin(const Particles& p, const HugoniotTemperature& thermal) {
   std::size_t first = std::numeric_limits<std::size_t>::max();
-#pragma omp parallel for schedule(static) reduction(min : first)
+#pragma omp parallel for schedule(dynamic, kChunk) reduction(min : first)
   for (std::size_t q = 0; q < p.size(); ++q)
     if (!(thermal.temperature(p.J(q), p.energy[q]) > 0.0)) first = q < first ? q : first;
   return first;
@@ -265,10 +267,11 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
   std::fprintf(f.get(),
                "{\n  \"exit_code\": %d,\n  \"failure\": \"%s\",\n  \"steps\": %lld,\n  \"start_time\": %.10g,\n"
                "  \"end_time\": %.10g,\n  \"wall_seconds\": %.6g,\n  \"material_points\": %zu,\n"
-               "  \"point_steps_per_second\": %.6g,\n  \"threads\": %d,\n  \"mass_error\": %.6g,\n"
+               "  \"point_steps_per_second\": %.6g,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n  \"mass_error\": %.6g,\n"
                "  \"momentum_error\": %.6g,\n  \"energy_error\": %.6g,\n  \"porosity\": %.10g,\n  \"voids\": %zu\n}\n",
                r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps), r.start_time,
-               r.end_time, r.wall_seconds, r.points, r.point_steps_per_second, omp_get_max_threads(), r.mass_error,
+               r.end_time, r.wall_seconds, r.points, r.point_steps_per_second, r.threads,
+               static_cast<long long>(r.steps_with_fewer_threads), r.mass_error,
                r.momentum_error, r.energy_error, r.porosity, r.voids);
   flush_or_throw(f.get(), path.string());
   f.reset();
@@ -297,6 +300,8 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
   const double end_time = landing_end_time(scene);
   Progress progress(!options.quiet, sim.time(), end_time);
   const auto wall_start = WallClock::now();
+  ThreadTuner threads(options.fixed_threads ? 1 : omp_get_max_threads());
+  const int all_threads = omp_get_max_threads();
   StepStatus status;
   std::size_t cold_point = std::numeric_limits<std::size_t>::max();
   while (sim.time() < end_time * (1.0 - 1e-12)) {
@@ -307,7 +312,10 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
     double dt = sim.stable_time_step();
     if (dt >= remaining) dt = remaining;
     else if (2.0 * dt > remaining) dt = 0.5 * remaining;
+    if (!options.fixed_threads) omp_set_num_threads(threads.threads());
+    const auto step_start = WallClock::now();
     status = sim.step(dt);
+    threads.record(std::chrono::duration<double>(WallClock::now() - step_start).count());
     sch.last_dt = dt;
     if (!status.ok()) break;
     if (g_stop_signal != 0) break;  // after a whole step, so the state is consistent
@@ -330,6 +338,8 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
     progress.update(sim.time(), sim.steps(), dt);
   }
   progress.finish();
+  result.threads = all_threads;
+  result.steps_with_fewer_threads = threads.steps_below_max();
   result.wall_seconds = std::chrono::duration<double>(WallClock::now() - wall_start).count();
 
   if (!status.ok()) {
@@ -381,6 +391,7 @@ RunResult advance(const Scene& scene, Simulation& sim, RunState& run, Outputs& o
   result.momentum_error = std::hypot(end.momentum_x - start.momentum_x, end.momentum_y - start.momentum_y) /
                           start.momentum_magnitude;
   result.energy_error = std::abs(end.total_energy() - start.total_energy()) / start.total_energy();
+  omp_set_num_threads(all_threads);
   write_summary_json(dir / "summary.json", result);
   return result;
 }
@@ -495,7 +506,10 @@ std::string describe_result(const RunResult& r) {
   std::ostringstream out;
   out << "steps: " << r.steps << " to t = " << r.end_time * 1e9 << " ns";
   if (r.start_time > 0) out << " (restarted at " << r.start_time * 1e9 << " ns)";
-  out << "\nwall time: " << r.wall_seconds << " s on " << omp_get_max_threads() << " threads\n";
+  out << "\nwall time: " << r.wall_seconds << " s on " << r.threads << (r.threads == 1 ? " thread" : " threads");
+  if (r.steps_with_fewer_threads > 0)
+    out << " (fewer for " << r.steps_with_fewer_threads << " steps, where that measured faster: a busy machine)";
+  out << "\n";
   out << "material points: " << r.points << ", point-steps per second: " << r.point_steps_per_second << "\n";
   out << "relative error: mass " << r.mass_error << ", momentum " << r.momentum_error << ", energy " << r.energy_error
       << "\n";

@@ -1,11 +1,13 @@
 #include "mpmshock/transfer.hpp"
 
+#include "mpmshock/parallel.hpp"
+
 namespace mpmshock {
 
 void update_grid_momentum(Grid& g, int row_begin, int row_end, double dt) {
   const auto b = static_cast<std::ptrdiff_t>(g.geo.node(0, row_begin));
   const auto e = static_cast<std::ptrdiff_t>(g.geo.node(0, row_end));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, kChunk)
   for (std::ptrdiff_t i = b; i < e; ++i) {
     const double m = g.m[i];
     if (m > 0.0) {
@@ -24,7 +26,7 @@ void update_grid_momentum(Grid& g, int row_begin, int row_end, double dt) {
 void remap_grid_velocity(Grid& g, int row_begin, int row_end) {
   const auto b = static_cast<std::ptrdiff_t>(g.geo.node(0, row_begin));
   const auto e = static_cast<std::ptrdiff_t>(g.geo.node(0, row_end));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, kChunk)
   for (std::ptrdiff_t i = b; i < e; ++i) {
     const double m = g.m[i];
     const double inv_m = m > 0.0 ? 1.0 / m : 0.0;

@@ -1,5 +1,7 @@
 // A tiny porous impact run end to end through run_scene: every output file written, every column of
 // regions.csv present and finite, the snapshots readable, conservation and porosity reported.
+#include <unistd.h>
+
 #include <hdf5.h>
 
 #include <filesystem>
@@ -16,7 +18,7 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   if (argc < 2) return 2;
-  const fs::path out = fs::temp_directory_path() / "mpmshock_test_porous_run";
+  const fs::path out = fs::temp_directory_path() / ("mpmshock_test_porous_run_" + std::to_string(::getpid()));
   fs::remove_all(out);
   const Scene scene = load_scene(argv[1], {"output_dir=" + out.string()});
   const RunResult r = run_scene(scene, {true, false});

@@ -2,6 +2,8 @@
 // thread and with two; and the results do not depend on the thread count at all. Every sum in the
 // step runs in a fixed order (strip-coloured scatter, block-ordered totals), so there is no
 // round-off that the thread count could reorder.
+#include <unistd.h>
+
 #include <omp.h>
 
 #include <cstring>
@@ -58,7 +60,7 @@ RunResult run(const std::string& scene_file, const fs::path& out, const std::vec
   // on the same grid (a restart keeps its run's grid whatever end_time it is given).
   std::vector<std::string> overrides = {"output_dir=" + out.string(), "snapshot_interval=30ns", "grid_margin=100um"};
   overrides.insert(overrides.end(), extra.begin(), extra.end());
-  return run_scene(load_scene(scene_file, overrides), {true, true});
+  return run_scene(load_scene(scene_file, overrides), {true, true, true});  // fixed threads: test what was asked
 }
 
 }  // namespace
@@ -66,7 +68,7 @@ RunResult run(const std::string& scene_file, const fs::path& out, const std::vec
 int main(int argc, char** argv) {
   if (argc < 2) return 2;
   const std::string scene = argv[1];
-  const fs::path root = fs::temp_directory_path() / "mpmshock_test_restart";
+  const fs::path root = fs::temp_directory_path() / ("mpmshock_test_restart_" + std::to_string(::getpid()));
   fs::remove_all(root);
 
   for (int threads : {1, 2}) {
@@ -74,7 +76,7 @@ int main(int argc, char** argv) {
     const fs::path whole = root / ("whole" + std::to_string(threads)), half = root / ("half" + std::to_string(threads));
     CHECK(run(scene, whole, {"end_time=60ns"}).exit_code == kExitOk);
     CHECK(run(scene, half, {"end_time=30ns"}).exit_code == kExitOk);
-    const RunResult r = restart_run((half / "snapshot_00001.h5").string(), {"end_time=60ns"}, {true, false});
+    const RunResult r = restart_run((half / "snapshot_00001.h5").string(), {"end_time=60ns"}, {true, false, true});
     CHECK(r.exit_code == kExitOk);
     CHECK(std::abs(r.start_time - 30e-9) < 1e-20 && std::abs(r.end_time - 60e-9) < 1e-20);
     check_same_snapshot(whole / "snapshot_00002.h5", half / "snapshot_00002.h5");

@@ -1,5 +1,7 @@
 // The scene parser on good and bad input: units, defaults, overrides, regions, and errors that name
 // the file, the line and the key.
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -89,7 +91,7 @@ int main() {
 
   // Files: missing, a directory, empty.
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "mpmshock_test_scene";
+  const fs::path dir = fs::temp_directory_path() / ("mpmshock_test_scene_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   CHECK_THROWS_WITH(load_scene((dir / "missing.scene").string()), "missing.scene", "cannot open");
   CHECK_THROWS_WITH(load_scene(dir.string()), "is a directory");

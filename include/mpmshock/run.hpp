@@ -26,6 +26,7 @@ void install_stop_handlers();
 struct RunOptions {
   bool quiet = false;  // no progress line
   bool force = false;  // replace the outputs of an earlier run (or, on restart, its later outputs)
+  bool fixed_threads = false;  // every step on all threads; otherwise the thread tuner chooses
 };
 
 struct RunResult {
@@ -37,6 +38,8 @@ struct RunResult {
   double wall_seconds = 0.0;
   std::size_t points = 0;
   double point_steps_per_second = 0.0;
+  int threads = 1;                           // the most threads the run used
+  std::int64_t steps_with_fewer_threads = 0;  // steps the thread tuner ran with fewer (thread_tuner.hpp)
   double mass_error = 0.0, momentum_error = 0.0, energy_error = 0.0;  // relative, since t = 0
   double porosity = 1.0;                                             // from the material points
   std::size_t voids = 0;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/parallel.hpp"
 
 namespace mpmshock {
 
@@ -55,7 +56,7 @@ bool StripBins::build(const std::vector<double>& y, const GridGeometry& g) {
 
   int lo = last_row, hi = 0;
   bool inside = true;
-#pragma omp parallel for reduction(min : lo) reduction(max : hi) reduction(&& : inside)
+#pragma omp parallel for schedule(dynamic, kChunk) reduction(min : lo) reduction(max : hi) reduction(&& : inside)
   for (std::size_t p = 0; p < n; ++p) {
     const int row = Shape::first_row(y[p], g);
     inside = inside && row >= 0 && row <= last_row;

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/strip_bins.hpp"
@@ -77,7 +78,7 @@ void grid_to_particles_velocity(Particles& p, const StripBins& bins, Grid& g, do
   if constexpr (Remap) {
     bins.scatter(kernel);
   } else {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, kChunk)
     for (std::size_t q = 0; q < p.size(); ++q) kernel(q);
   }
 }
@@ -105,7 +106,7 @@ std::size_t velocity_gradient_work_and_move(Particles& p, const Grid& g, const s
   const double width = geo.width();
   const int last_row = geo.ny - Shape::support;
   std::size_t first_out = kNoPoint;
-#pragma omp parallel for schedule(static) reduction(min : first_out)
+#pragma omp parallel for schedule(dynamic, kChunk) reduction(min : first_out)
   for (std::size_t q = 0; q < p.size(); ++q) {
     const auto st = Shape::at(p.x[q], p.y[q], geo);
     double Lxx = 0.0, Lxy = 0.0, Lyx = 0.0, Lyy = 0.0;  // L[u]

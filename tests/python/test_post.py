@@ -52,7 +52,7 @@ def simulate(binary, scene, out_dir, *overrides):
         command += ["--set", override]
     try:
         done = subprocess.run(command, capture_output=True, text=True,
-                              env=dict(os.environ, OMP_WAIT_POLICY="PASSIVE"), timeout=120)
+                              env=dict(os.environ, OMP_WAIT_POLICY="PASSIVE"))
     except OSError as e:
         sys.exit(f"FAILED: cannot run {binary}: {e}")
     if done.returncode != 0:
@@ -61,7 +61,7 @@ def simulate(binary, scene, out_dir, *overrides):
 
 def plot(*args, interpreter=True):
     command = ([PYTHON] if interpreter else []) + [str(PLOT)] + [str(a) for a in args]
-    return subprocess.run(command, capture_output=True, text=True, timeout=120)
+    return subprocess.run(command, capture_output=True, text=True)
 
 
 def expect_image(args, path, magic):

@@ -1,0 +1,62 @@
+// The number of threads a run uses, chosen as it runs by measuring its own steps.
+//
+// OpenMP's runtime (libgomp) makes threads that wait at a barrier spin for ~3 ms before they
+// sleep. On a machine where another program uses a core, the thread that still has work is then
+// often the one without a core, and a step with 2 threads measured 2.2x slower than with 1 (README,
+// "Threads on a busy machine"). The wait policy is read from OMP_WAIT_POLICY when the runtime is
+// loaded, before main(), so the program cannot change it; it can change how many threads it uses.
+//
+// The tuner runs the steps at its current thread count and, every `period` steps, tries a few
+// steps at another candidate count (half or double, within [1, max]). If those are faster by a
+// clear margin it switches; if not, it waits twice as long before the next try (up to
+// kMaxPeriod), so a machine whose load does not change pays almost nothing for the probing. A try
+// whose first steps are all clearly slower ends early.
+// Results do not depend on the thread count (every sum runs in a fixed order), so switching is
+// free of side effects. Pure logic: step times come in from the caller, so tests drive it with
+// made-up times.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace mpmshock {
+
+class ThreadTuner {
+ public:
+  static constexpr int kSamples = 5;          // steps per measurement (their median counts)
+  static constexpr int kClearLoss = 2;        // a try ends early once this many steps were all slower
+  static constexpr int kFirstPeriod = 8;      // steps before the first try
+  static constexpr int kPeriodAfterSwitch = 40;  // steps before the next try after a switch
+  static constexpr int kMaxPeriod = 1280;     // the longest wait between tries
+  static constexpr double kMargin = 0.05;     // a try must be this much faster to win
+
+  // max_threads: the most threads to use (--threads, or all cores); 1 turns the tuner off.
+  explicit ThreadTuner(int max_threads);
+
+  // The thread count for the next step.
+  int threads() const { return trying_ ? candidate_ : current_; }
+  // The wall time the step took at threads().
+  void record(double seconds);
+
+  int max_threads() const { return max_; }
+  // Steps taken with fewer than max_threads() threads, for the summary.
+  std::int64_t steps_below_max() const { return below_max_; }
+  std::int64_t steps() const { return steps_; }
+
+ private:
+  int next_candidate();
+  static double median(std::vector<double> v);
+
+  int max_;
+  int current_;
+  int candidate_ = 1;
+  bool trying_ = false;
+  bool go_down_ = false;  // direction of the last try
+  int period_ = kFirstPeriod;
+  int since_try_ = 0;
+  std::vector<double> recent_;  // the last kSamples step times at current_
+  std::vector<double> trial_;   // step times at candidate_ during a try
+  std::int64_t below_max_ = 0, steps_ = 0;
+};
+
+}  // namespace mpmshock

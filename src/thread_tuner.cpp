@@ -1,0 +1,52 @@
+#include "mpmshock/thread_tuner.hpp"
+
+#include <algorithm>
+
+namespace mpmshock {
+
+ThreadTuner::ThreadTuner(int max_threads) : max_(std::max(1, max_threads)), current_(max_) {}
+
+// Half or double the current count, alternating where both are possible.
+int ThreadTuner::next_candidate() {
+  const bool can_go_down = current_ > 1, can_go_up = current_ < max_;
+  go_down_ = can_go_down && (!can_go_up || !go_down_);
+  return go_down_ ? current_ / 2 : std::min(max_, 2 * current_);
+}
+
+double ThreadTuner::median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+void ThreadTuner::record(double seconds) {
+  ++steps_;
+  if (threads() < max_) ++below_max_;
+  if (max_ == 1) return;
+  if (trying_) {
+    trial_.push_back(seconds);
+    const double now = median(recent_);
+    const int n = static_cast<int>(trial_.size());
+    const bool clear_loss =
+        n == kClearLoss && *std::min_element(trial_.begin(), trial_.end()) > (1.0 + kMargin) * now;
+    if (n < kSamples && !clear_loss) return;
+    trying_ = false;
+    if (!clear_loss && median(trial_) < (1.0 - kMargin) * now) {
+      current_ = candidate_;
+      period_ = kPeriodAfterSwitch;
+      recent_.clear();
+    } else {
+      period_ = std::min(kMaxPeriod, 2 * period_);
+    }
+    trial_.clear();
+    since_try_ = 0;
+    return;
+  }
+  recent_.push_back(seconds);
+  if (static_cast<int>(recent_.size()) > kSamples) recent_.erase(recent_.begin());
+  if (++since_try_ >= period_ && static_cast<int>(recent_.size()) == kSamples) {
+    trying_ = true;
+    candidate_ = next_candidate();
+  }
+}
+
+}  // namespace mpmshock
