@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "mpmshock/regions.hpp"
+#include "mpmshock/setup.hpp"
 #include "mpmshock/simulation.hpp"
 #include "mpmshock/temperature.hpp"
 #include "mpmshock/thread_tuner.hpp"
@@ -52,8 +53,8 @@ std::string base_scene(double width) {
 
 // Runs `steps` steps after a 100 ns warm-up (so the shock and void collapse are under way).
 double point_steps_per_second(const Scene& scene, int steps, std::size_t& points, std::size_t& bytes) {
-  InitialState initial = build_initial_state(scene);
-  Simulation sim(scene, initial.grid, std::move(initial.particles));
+  InitialState<2> initial = build_initial_state<2>(scene);
+  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
   points = sim.particles().size();
   bytes = sim.particles().bytes_per_point();
   while (sim.time() < 100e-9) sim.step(sim.stable_time_step());
@@ -88,8 +89,8 @@ void stop_busy_process(pid_t pid) {
 // thread tuner choosing up to `threads` (as mpmshock runs).
 double rate_with_threads(const Scene& scene, int warmup, int steps, int threads, bool tuned) {
   omp_set_num_threads(threads);
-  InitialState initial = build_initial_state(scene);
-  Simulation sim(scene, initial.grid, std::move(initial.particles));
+  InitialState<2> initial = build_initial_state<2>(scene);
+  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
   for (int k = 0; k < warmup; ++k) sim.step(sim.stable_time_step());
   ThreadTuner tuner(tuned ? threads : 1);
   const auto t0 = WallClock::now();
@@ -192,8 +193,8 @@ int main(int argc, char** argv) {
   // The thermal model costs nothing per step: temperature is a function of (J, E), evaluated only
   // when a sample or snapshot is written. Its cost is per sample.
   const Scene scene = parse_scene(base_scene(width), "bench");
-  InitialState initial = build_initial_state(scene);
-  Simulation sim(scene, initial.grid, std::move(initial.particles));
+  InitialState<2> initial = build_initial_state<2>(scene);
+  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
   while (sim.time() < 100e-9) sim.step(sim.stable_time_step());
   const HugoniotTemperature thermal(scene.material);
   auto time_samples = [&](const HugoniotTemperature* t) {

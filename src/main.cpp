@@ -11,7 +11,7 @@
 #include "mpmshock/hdf5_io.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/scene.hpp"
-#include "mpmshock/setup.hpp"
+#include "mpmshock/signals.hpp"
 #include "mpmshock/version.hpp"
 
 namespace {
@@ -132,8 +132,7 @@ int main(int argc, char** argv) {
     }
     const mpmshock::Scene scene = mpmshock::load_scene(args.scene, args.overrides);
     if (args.check) {
-      const mpmshock::InitialState state = mpmshock::build_initial_state(scene);
-      std::fputs(mpmshock::describe_setup(scene, state).c_str(), stdout);
+      std::fputs(mpmshock::check_report(scene).c_str(), stdout);
       return mpmshock::kExitOk;
     }
     const mpmshock::RunResult result = mpmshock::run_scene(scene, {args.quiet, args.force, args.fixed_threads});

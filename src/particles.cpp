@@ -4,57 +4,56 @@ namespace mpmshock {
 
 namespace {
 
-// Every per-point double field, for bulk operations that must not forget one.
+// Every per-point field, for bulk operations (reserve, bytes per point) that must not forget one.
 template <class P, class F>
-void for_each_double_field(P& p, F&& f) {
-  for (auto* v : {&p.x, &p.y, &p.vx, &p.vy, &p.mass, &p.volume0, &p.Fxx, &p.Fxy, &p.Fyx, &p.Fyy, &p.Lxx, &p.Lxy,
-                  &p.Lyx, &p.Lyy, &p.work, &p.energy, &p.pressure, &p.viscosity})
-    f(*v);
-}
-template <class P, class F>
-void for_each_strength_field(P& p, F&& f) {
-  if (p.has_strength())
-    for (auto* v : {&p.sxx, &p.syy, &p.sxy, &p.plastic_strain}) f(*v);
-  if (p.has_back_stress())
-    for (auto* v : {&p.axx, &p.ayy, &p.axy}) f(*v);
+void for_each_field(P& p, F&& f) {
+  f(p.x), f(p.v), f(p.m), f(p.V0), f(p.F), f(p.L), f(p.work), f(p.E), f(p.P), f(p.q), f(p.id), f(p.body);
+  if (p.has_strength()) f(p.s), f(p.eps_p);
+  if (p.has_back_stress()) f(p.alpha);
 }
 
 }  // namespace
 
-void Particles::add(double px, double py, double pvx, double pvy, double m, double V0, Body b) {
+template <int D>
+void Particles<D>::add(const Vec<D>& position, const Vec<D>& velocity, double mass, double volume0, Body b) {
   id.push_back(static_cast<std::uint32_t>(x.size()));
-  x.push_back(px);
-  y.push_back(py);
-  vx.push_back(pvx);
-  vy.push_back(pvy);
-  mass.push_back(m);
-  volume0.push_back(V0);
-  Fxx.push_back(1.0);
-  Fxy.push_back(0.0);
-  Fyx.push_back(0.0);
-  Fyy.push_back(1.0);
-  for (auto* v : {&Lxx, &Lxy, &Lyx, &Lyy, &work, &energy, &pressure, &viscosity}) v->push_back(0.0);
-  for_each_strength_field(*this, [](std::vector<double>& v) { v.push_back(0.0); });
+  x.push_back(position);
+  v.push_back(velocity);
+  m.push_back(mass);
+  V0.push_back(volume0);
+  F.push_back(Mat<D>::identity());
+  L.push_back(Mat<D>{});
+  for (auto* f : {&work, &E, &P, &q}) f->push_back(0.0);
+  if (strength_) {
+    s.push_back({});
+    eps_p.push_back(0.0);
+  }
+  if (back_stress_) alpha.push_back({});
   body.push_back(b);
 }
 
-void Particles::enable_strength(bool on, bool back_stress) {
-  for (auto* v : {&sxx, &syy, &sxy, &plastic_strain, &axx, &ayy, &axy}) v->clear();
+template <int D>
+void Particles<D>::enable_strength(bool on, bool back_stress) {
   strength_ = on;
   back_stress_ = on && back_stress;
-  for_each_strength_field(*this, [&](std::vector<double>& v) { v.assign(size(), 0.0); });
+  s.assign(strength_ ? size() : 0, {});
+  eps_p.assign(strength_ ? size() : 0, 0.0);
+  alpha.assign(back_stress_ ? size() : 0, {});
 }
 
-void Particles::reserve(std::size_t n) {
-  for_each_double_field(*this, [&](std::vector<double>& v) { v.reserve(n); });
-  for_each_strength_field(*this, [&](std::vector<double>& v) { v.reserve(n); });
-  id.reserve(n);
-  body.reserve(n);
+template <int D>
+void Particles<D>::reserve(std::size_t n) {
+  for_each_field(*this, [n](auto& field) { field.reserve(n); });
 }
 
-std::size_t Particles::bytes_per_point() const {
-  const std::size_t doubles = 18 + (has_strength() ? 4 : 0) + (has_back_stress() ? 3 : 0);
-  return doubles * sizeof(double) + sizeof(std::uint32_t) + sizeof(Body);
+template <int D>
+std::size_t Particles<D>::bytes_per_point() const {
+  std::size_t bytes = 0;
+  for_each_field(*this, [&bytes](const auto& field) { bytes += sizeof(field[0]); });
+  return bytes;
 }
+
+template struct Particles<2>;
+template struct Particles<3>;
 
 }  // namespace mpmshock

@@ -9,14 +9,16 @@ const char* const kRegionsHeader =
     "time,region,count,density_mean,density_std,pressure_mean,pressure_std,temperature_mean,temperature_std,"
     "velocity_x_mean,velocity_x_std,velocity_y_mean,velocity_y_std,rot2_mean,div2_mean,strain_rate2_mean";
 
-double target_top(const Particles& p) {
+template <int D>
+double target_top(const Particles<D>& p) {
   double top = -std::numeric_limits<double>::infinity();
   for (std::size_t q = 0; q < p.size(); ++q)
-    if (p.body[q] == Body::target) top = std::max(top, p.y[q]);
+    if (p.body[q] == Body::target) top = std::max(top, p.x[q][1]);
   return top;
 }
 
-std::vector<std::size_t> points_in_region(const Particles& p, const RegionSpec& r, double y_top) {
+template <int D>
+std::vector<std::size_t> points_in_region(const Particles<D>& p, const RegionSpec& r, double y_top) {
   double lo = 0.0, hi = 0.0;
   bool target_only = true;
   switch (r.kind) {
@@ -27,7 +29,7 @@ std::vector<std::size_t> points_in_region(const Particles& p, const RegionSpec& 
   std::vector<std::size_t> out;
   for (std::size_t q = 0; q < p.size(); ++q) {
     if (target_only && p.body[q] != Body::target) continue;
-    if (p.y[q] >= lo && p.y[q] <= hi) out.push_back(q);
+    if (p.x[q][1] >= lo && p.x[q][1] <= hi) out.push_back(q);
   }
   return out;
 }
@@ -59,36 +61,32 @@ double mean_of(const std::vector<std::size_t>& points, F&& f) {
 
 }  // namespace
 
-RegionStats region_stats(const Particles& p, const std::vector<std::size_t>& points, const std::string& name,
+template <int D>
+RegionStats region_stats(const Particles<D>& p, const std::vector<std::size_t>& points, const std::string& name,
                          const HugoniotTemperature* thermal) {
   RegionStats s;
   s.name = name;
   s.count = points.size();
   s.density = mean_std(points, [&](std::size_t q) { return p.density(q); });
-  s.pressure = mean_std(points, [&](std::size_t q) { return p.pressure[q]; });
+  s.pressure = mean_std(points, [&](std::size_t q) { return p.P[q]; });
   if (thermal) {
-    s.temperature = mean_std(points, [&](std::size_t q) { return thermal->temperature(p.J(q), p.energy[q]); });
+    s.temperature = mean_std(points, [&](std::size_t q) { return thermal->temperature(p.J(q), p.E[q]); });
   } else {
     s.temperature = {std::nan(""), std::nan("")};
   }
-  s.velocity_x = mean_std(points, [&](std::size_t q) { return p.vx[q]; });
-  s.velocity_y = mean_std(points, [&](std::size_t q) { return p.vy[q]; });
-  s.rot2 = mean_of(points, [&](std::size_t q) {
-    const double rot = p.Lyx[q] - p.Lxy[q];
-    return rot * rot;
-  });
+  s.velocity_x = mean_std(points, [&](std::size_t q) { return p.v[q][0]; });
+  s.velocity_y = mean_std(points, [&](std::size_t q) { return p.v[q][1]; });
+  s.rot2 = mean_of(points, [&](std::size_t q) { return rotation2(p.L[q]); });
   s.div2 = mean_of(points, [&](std::size_t q) {
-    const double div = p.Lxx[q] + p.Lyy[q];
+    const double div = trace(p.L[q]);
     return div * div;
   });
-  s.strain_rate2 = mean_of(points, [&](std::size_t q) {
-    const double Dxy = 0.5 * (p.Lxy[q] + p.Lyx[q]);
-    return p.Lxx[q] * p.Lxx[q] + p.Lyy[q] * p.Lyy[q] + 2.0 * Dxy * Dxy;
-  });
+  s.strain_rate2 = mean_of(points, [&](std::size_t q) { return strain_rate(p.L[q]).norm2(); });
   return s;
 }
 
-std::vector<RegionStats> sample_regions(const Particles& p, const std::vector<RegionSpec>& regions,
+template <int D>
+std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector<RegionSpec>& regions,
                                         const HugoniotTemperature* thermal) {
   const double y_top = target_top(p);
   std::vector<RegionStats> out;
@@ -105,5 +103,16 @@ void write_region_rows(std::FILE* out, double time, const std::vector<RegionStat
                  s.velocity_y.std, s.rot2, s.div2, s.strain_rate2);
   }
 }
+
+#define MPMSHOCK_INSTANTIATE(D)                                                                              \
+  template double target_top<D>(const Particles<D>&);                                                     \
+  template std::vector<std::size_t> points_in_region<D>(const Particles<D>&, const RegionSpec&, double);  \
+  template RegionStats region_stats<D>(const Particles<D>&, const std::vector<std::size_t>&, const std::string&, \
+                                       const HugoniotTemperature*);                                       \
+  template std::vector<RegionStats> sample_regions<D>(const Particles<D>&, const std::vector<RegionSpec>&, \
+                                                      const HugoniotTemperature*);
+MPMSHOCK_INSTANTIATE(2)
+MPMSHOCK_INSTANTIATE(3)
+#undef MPMSHOCK_INSTANTIATE
 
 }  // namespace mpmshock

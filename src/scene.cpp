@@ -64,7 +64,6 @@ enum class Kind { quantity, integer, flag, text, choice };
 
 struct Key {
   std::string name;
-  std::string group;
   Kind kind = Kind::quantity;
   Dimension dim = Dimension::none;
   Range range;
@@ -75,11 +74,10 @@ struct Key {
   std::function<std::string(const Scene&)> get;  // resolved value, SI
 };
 
-// What every key has: its name, group, kind, default and meaning.
-Key describe_key(Kind kind, const std::string& name, std::string group, std::string def, std::string meaning) {
+// What every key has: its name, kind, default and meaning.
+Key describe_key(Kind kind, const std::string& name, std::string def, std::string meaning) {
   Key k;
   k.name = name;
-  k.group = std::move(group);
   k.kind = kind;
   k.default_text = std::move(def);
   k.meaning = std::move(meaning);
@@ -87,9 +85,9 @@ Key describe_key(Kind kind, const std::string& name, std::string group, std::str
 }
 
 template <class Ref>
-Key quantity(std::string name, std::string group, Dimension dim, Range range, std::string def, std::string meaning,
+Key quantity(std::string name, Dimension dim, Range range, std::string def, std::string meaning,
              Ref ref) {
-  Key k = describe_key(Kind::quantity, name, std::move(group), std::move(def), std::move(meaning));
+  Key k = describe_key(Kind::quantity, name, std::move(def), std::move(meaning));
   k.dim = dim;
   k.range = range;
   k.set = [name, dim, range, ref](Scene& s, const std::string& text, const Origin& at) {
@@ -115,8 +113,8 @@ Key quantity(std::string name, std::string group, Dimension dim, Range range, st
 }
 
 template <class Ref>
-Key integer(std::string name, std::string group, Range range, std::string def, std::string meaning, Ref ref) {
-  Key k = describe_key(Kind::integer, name, std::move(group), std::move(def), std::move(meaning));
+Key integer(std::string name, Range range, std::string def, std::string meaning, Ref ref) {
+  Key k = describe_key(Kind::integer, name, std::move(def), std::move(meaning));
   k.range = range;
   k.set = [name, range, ref](Scene& s, const std::string& text, const Origin& at) {
     std::int64_t v = 0;
@@ -136,8 +134,8 @@ Key integer(std::string name, std::string group, Range range, std::string def, s
 }
 
 template <class Ref>
-Key flag(std::string name, std::string group, std::string def, std::string meaning, Ref ref) {
-  Key k = describe_key(Kind::flag, name, std::move(group), std::move(def), std::move(meaning));
+Key flag(std::string name, std::string def, std::string meaning, Ref ref) {
+  Key k = describe_key(Kind::flag, name, std::move(def), std::move(meaning));
   k.choices = "on|off";
   k.set = [name, ref](Scene& s, const std::string& text, const Origin& at) {
     if (text == "on" || text == "yes" || text == "true") {
@@ -153,17 +151,17 @@ Key flag(std::string name, std::string group, std::string def, std::string meani
 }
 
 template <class Ref>
-Key text(std::string name, std::string group, std::string def, std::string meaning, Ref ref) {
-  Key k = describe_key(Kind::text, name, std::move(group), std::move(def), std::move(meaning));
+Key text(std::string name, std::string def, std::string meaning, Ref ref) {
+  Key k = describe_key(Kind::text, name, std::move(def), std::move(meaning));
   k.set = [ref](Scene& s, const std::string& value, const Origin&) { ref(s) = value; };
   k.get = [ref](const Scene& s) { return ref(s); };
   return k;
 }
 
 template <class Enum, class Ref>
-Key choice(std::string name, std::string group, std::vector<std::pair<std::string, Enum>> options, std::string def,
+Key choice(std::string name, std::vector<std::pair<std::string, Enum>> options, std::string def,
            std::string meaning, Ref ref) {
-  Key k = describe_key(Kind::choice, name, std::move(group), std::move(def), std::move(meaning));
+  Key k = describe_key(Kind::choice, name, std::move(def), std::move(meaning));
   for (const auto& [word, value] : options) k.choices += (k.choices.empty() ? "" : "|") + word;
   k.set = [name, options, ref](Scene& s, const std::string& value, const Origin& at) {
     for (const auto& [word, e] : options) {
@@ -191,104 +189,101 @@ const std::vector<Key>& keys() {
     using D = Dimension;
     std::vector<Key> k;
     // Impact
-    k.push_back(quantity("velocity", "impact", D::speed, Range{0.0, 1e5, true, false}, "1000 m/s",
+    k.push_back(quantity("velocity", D::speed, Range{0.0, 1e5, true, false}, "1000 m/s",
                          "each body moves at this speed toward the impact plane y = 0 (target down, flyer up)",
                          FIELD(velocity)));
-    k.push_back(quantity("porosity", "impact", D::none, closed(1.0, 10.0), "1.03",
+    k.push_back(quantity("porosity", D::none, closed(1.0, 10.0), "1.03",
                          "delta = rho_solid / rho_porous of both bodies; 1 means solid, no voids", FIELD(porosity)));
-    k.push_back(quantity("void_radius", "impact", D::length, positive(), "50 um", "mean void radius",
+    k.push_back(quantity("void_radius", D::length, positive(), "50 um", "mean void radius",
                          FIELD(void_radius)));
-    k.push_back(quantity("void_radius_spread", "impact", D::length, non_negative(), "0 m",
+    k.push_back(quantity("void_radius_spread", D::length, non_negative(), "0 m",
                          "void radii are uniform in [void_radius - spread, void_radius + spread]",
                          FIELD(void_radius_spread)));
-    k.push_back(quantity("void_min_gap", "impact", D::length, non_negative(), "0 m",
+    k.push_back(quantity("void_min_gap", D::length, non_negative(), "0 m",
                          "smallest ligament kept between two voids (when void_overlap = off)", FIELD(void_min_gap)));
-    k.push_back(flag("void_overlap", "impact", "off", "allow voids to overlap", FIELD(void_overlap)));
-    k.push_back(flag("flyer_mirror", "impact", "on",
+    k.push_back(flag("void_overlap", "off", "allow voids to overlap", FIELD(void_overlap)));
+    k.push_back(flag("flyer_mirror", "on",
                      "the flyer is the mirror image of the target about y = 0, as in the paper; off: its own voids",
                      FIELD(flyer_mirror)));
-    k.push_back(quantity("target_height", "impact", D::length, Range{0.0, 10.0, true, false}, "5 mm", "target (upper body) height",
+    k.push_back(quantity("target_height", D::length, Range{0.0, 10.0, true, false}, "5 mm", "target (upper body) height",
                          FIELD(target_height)));
-    k.push_back(quantity("flyer_height", "impact", D::length, Range{0.0, 10.0, true, false}, "5 mm", "flyer (lower body) height",
+    k.push_back(quantity("flyer_height", D::length, Range{0.0, 10.0, true, false}, "5 mm", "flyer (lower body) height",
                          FIELD(flyer_height)));
-    k.push_back(quantity("width", "impact", D::length, Range{0.0, 10.0, true, false}, "2 mm", "width of the periodic column (x)",
+    k.push_back(quantity("width", D::length, Range{0.0, 10.0, true, false}, "2 mm", "width of the periodic column (x)",
                          FIELD(width)));
     // Discretisation
-    k.push_back(quantity("cell_size", "numerics", D::length, Range{0.0, 1.0, true, false}, "20 um", "background grid cell size h",
+    k.push_back(quantity("cell_size", D::length, Range{0.0, 1.0, true, false}, "20 um", "background grid cell size h",
                          FIELD(cell_size)));
-    k.push_back(integer("particles_per_cell", "numerics", closed(1, 8), "2",
+    k.push_back(integer("particles_per_cell", closed(1, 8), "2",
                         "material points per cell in each direction", FIELD(particles_per_cell)));
-    k.push_back(quantity("grid_margin", "numerics", D::length, Range{-kInf, kInf, false, false}, "auto",
+    k.push_back(quantity("grid_margin", D::length, Range{-kInf, kInf, false, false}, "auto",
                          "empty grid kept beyond each free surface; auto = 8 cells + 2 velocity end_time",
                          FIELD(grid_margin)));
-    k.push_back(quantity("end_time", "numerics", D::time, Range{0.0, 1.0, true, false}, "1 us", "simulated time to run",
+    k.push_back(quantity("end_time", D::time, Range{0.0, 1.0, true, false}, "1 us", "simulated time to run",
                          FIELD(end_time)));
-    k.push_back(quantity("cfl", "numerics", D::none, open(0.0, 1.0), "0.3",
+    k.push_back(quantity("cfl", D::none, open(0.0, 1.0), "0.3",
                          "time step = cfl h / (fastest signal: sound speed + viscous speed + particle speed)",
                          FIELD(cfl)));
-    k.push_back(choice<UpdateScheme>("update_scheme", "numerics",
-                                     {{"musl", UpdateScheme::musl}, {"usl", UpdateScheme::usl}}, "musl",
+    k.push_back(choice<UpdateScheme>("update_scheme", {{"musl", UpdateScheme::musl}, {"usl", UpdateScheme::usl}}, "musl",
                                      "musl: stress from the re-mapped velocity, energy from the exact work of the forces (conserved); usl: classic",
                                      FIELD(update_scheme)));
-    k.push_back(choice<ShapeFunction>(
-        "shape_function", "numerics",
-        {{"bilinear", ShapeFunction::bilinear}, {"gimp", ShapeFunction::gimp}, {"bspline2", ShapeFunction::bspline2}},
+    k.push_back(choice<ShapeFunction>("shape_function", {{"bilinear", ShapeFunction::bilinear}, {"gimp", ShapeFunction::gimp}, {"bspline2", ShapeFunction::bspline2}},
         "bspline2",
         "bspline2 and gimp (3 x 3 nodes) remove most grid-crossing noise; bilinear: the paper's 4-node cells",
         FIELD(shape_function)));
-    k.push_back(quantity("av_linear", "numerics", D::none, non_negative(), "0.2",
+    k.push_back(quantity("av_linear", D::none, non_negative(), "0.2",
                          "linear artificial viscosity coefficient A1", FIELD(av_linear)));
-    k.push_back(quantity("av_quadratic", "numerics", D::none, non_negative(), "2",
+    k.push_back(quantity("av_quadratic", D::none, non_negative(), "2",
                          "quadratic artificial viscosity coefficient A2", FIELD(av_quadratic)));
-    k.push_back(integer("seed", "numerics", closed(0, 9.0e18), "1", "random seed of the void layout",
+    k.push_back(integer("seed", closed(0, 9.0e18), "1", "random seed of the void layout",
                         FIELD(seed)));
     // Effects
-    k.push_back(flag("plasticity", "effects", "on",
+    k.push_back(flag("plasticity", "on",
                      "von Mises strength with mixed hardening; off: hydrodynamic, no deviatoric stress",
                      FIELD(effects.plasticity)));
-    k.push_back(flag("thermal", "effects", "on",
+    k.push_back(flag("thermal", "on",
                      "the paper's temperature T = T_H(V) + (E - E_H)/c_v; off: no temperature is computed",
                      FIELD(effects.thermal)));
-    k.push_back(flag("artificial_viscosity", "effects", "on", "shock-capturing bulk viscosity in compression",
+    k.push_back(flag("artificial_viscosity", "on", "shock-capturing bulk viscosity in compression",
                      FIELD(effects.artificial_viscosity)));
     // Material (the paper's aluminium)
-    k.push_back(quantity("density", "material", D::density, Range{0.0, 1e5, true, false}, "2700 kg/m3", "solid reference density rho0",
+    k.push_back(quantity("density", D::density, Range{0.0, 1e5, true, false}, "2700 kg/m3", "solid reference density rho0",
                          FIELD(material.density)));
-    k.push_back(quantity("youngs_modulus", "material", D::pressure, positive(), "69 GPa",
+    k.push_back(quantity("youngs_modulus", D::pressure, positive(), "69 GPa",
                          "Young's modulus E (with nu gives the shear modulus)", FIELD(material.youngs_modulus)));
-    k.push_back(quantity("poisson_ratio", "material", D::none, open(-1.0, 0.5), "0.33", "Poisson's ratio nu",
+    k.push_back(quantity("poisson_ratio", D::none, open(-1.0, 0.5), "0.33", "Poisson's ratio nu",
                          FIELD(material.poisson_ratio)));
-    k.push_back(quantity("yield_stress", "material", D::pressure, positive(), "120 MPa",
+    k.push_back(quantity("yield_stress", D::pressure, positive(), "120 MPa",
                          "initial yield stress sigma_Y0", FIELD(material.yield_stress)));
-    k.push_back(quantity("tangent_modulus", "material", D::pressure, non_negative(), "384 MPa",
+    k.push_back(quantity("tangent_modulus", D::pressure, non_negative(), "384 MPa",
                          "tangent modulus E_tan past yield", FIELD(material.tangent_modulus)));
-    k.push_back(quantity("hardening_beta", "material", D::none, closed(0.0, 1.0), "1",
+    k.push_back(quantity("hardening_beta", D::none, closed(0.0, 1.0), "1",
                          "share of isotropic hardening: 1 isotropic, 0 kinematic", FIELD(material.hardening_beta)));
-    k.push_back(quantity("sound_speed", "material", D::speed, Range{0.0, 1e5, true, false}, "5350 m/s",
+    k.push_back(quantity("sound_speed", D::speed, Range{0.0, 1e5, true, false}, "5350 m/s",
                          "bulk sound speed c0 (Us = c0 + s up)", FIELD(material.sound_speed)));
-    k.push_back(quantity("hugoniot_slope", "material", D::none, closed(1.0, 5.0), "1.34",
+    k.push_back(quantity("hugoniot_slope", D::none, closed(1.0, 5.0), "1.34",
                          "Us-up slope s (the paper's lambda)", FIELD(material.hugoniot_slope)));
-    k.push_back(quantity("gruneisen_gamma", "material", D::none, closed(0.0, 10.0), "1.96",
+    k.push_back(quantity("gruneisen_gamma", D::none, closed(0.0, 10.0), "1.96",
                          "Grüneisen gamma0 at rho0; gamma rho is held constant", FIELD(material.gruneisen_gamma)));
-    k.push_back(quantity("specific_heat", "material", D::specific_heat, positive(), "880 J/(kg K)",
+    k.push_back(quantity("specific_heat", D::specific_heat, positive(), "880 J/(kg K)",
                          "specific heat c_v", FIELD(material.specific_heat)));
-    k.push_back(quantity("thermal_conductivity", "material", D::conductivity, non_negative(), "237 W/(m K)",
+    k.push_back(quantity("thermal_conductivity", D::conductivity, non_negative(), "237 W/(m K)",
                          "thermal conductivity k (recorded; heat conduction is not modelled yet)",
                          FIELD(material.thermal_conductivity)));
-    k.push_back(quantity("initial_temperature", "material", D::temperature, positive(), "300 K",
+    k.push_back(quantity("initial_temperature", D::temperature, positive(), "300 K",
                          "initial temperature T0", FIELD(material.initial_temperature)));
     // Output
-    k.push_back(text("output_dir", "output", "output", "directory for regions.csv, snapshots and the summary",
+    k.push_back(text("output_dir", "output", "directory for regions.csv, snapshots and the summary",
                      FIELD(output_dir)));
-    k.push_back(quantity("sample_interval", "output", D::time, positive(), "10 ns",
+    k.push_back(quantity("sample_interval", D::time, positive(), "10 ns",
                          "simulated time between rows of regions.csv and conservation.csv", FIELD(sample_interval)));
-    k.push_back(quantity("snapshot_interval", "output", D::time, non_negative(), "100 ns",
+    k.push_back(quantity("snapshot_interval", D::time, non_negative(), "100 ns",
                          "simulated time between HDF5 snapshots; 0: only the first and the last",
                          FIELD(snapshot_interval)));
-    k.push_back(integer("snapshot_compression", "output", closed(0, 9), "0",
+    k.push_back(integer("snapshot_compression", closed(0, 9), "0",
                         "gzip level for every snapshot field (slower, ~1/3 smaller); 0: only id, body, mass",
                         FIELD(snapshot_compression)));
-    k.push_back(flag("snapshot_grid", "output", "off", "also write the grid's nodal mass and velocity",
+    k.push_back(flag("snapshot_grid", "off", "also write the grid's nodal mass and velocity",
                      FIELD(snapshot_grid)));
     return k;
   }();
@@ -430,11 +425,22 @@ std::vector<Entry> read_entries(const std::string& text, const std::string& name
   return out;
 }
 
+}  // namespace
+
+std::string override_key(const std::string& arg) { return trim(arg.substr(0, arg.find('='))); }
+
+std::string stability_warning(const Scene& s) {
+  if (s.cfl > 0.5) return "cfl " + format_number(s.cfl) + " > 0.5 was measured unstable in jetting cases (docs/stability.md)";
+  return "";
+}
+
+namespace {
+
 Entry parse_override(const std::string& arg, int index) {
   const Origin at{"--set #" + std::to_string(index) + " (" + arg + ")"};
   const auto eq = arg.find('=');
   if (eq == std::string::npos) throw SceneError(at.where + ": expected --set key=value");
-  Entry e{trim(arg.substr(0, eq)), trim(arg.substr(eq + 1)), at};
+  Entry e{override_key(arg), trim(arg.substr(eq + 1)), at};
   if (!valid_key_name(e.key)) throw SceneError(at.where + ": '" + e.key + "' is not a key name");
   if (e.value.empty()) throw error_at(at, e.key, "missing value");
   if (!valid_utf8(e.value)) throw error_at(at, e.key, "the value has bytes that are not UTF-8 text");

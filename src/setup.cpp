@@ -3,10 +3,13 @@
 #include <cmath>
 #include <random>
 
+#include "mpmshock/model.hpp"
+
 namespace mpmshock {
 
-GridGeometry build_grid_geometry(const Scene& s) {
-  GridGeometry g;
+template <int D>
+GridGeometry<D> build_grid_geometry(const Scene& s) {
+  GridGeometry<D> g;
   g.h = s.cell_size;
   g.inv_h = 1.0 / s.cell_size;
   g.nx = static_cast<int>(std::lround(s.width / s.cell_size));
@@ -23,13 +26,13 @@ GridGeometry build_grid_geometry(const Scene& s) {
 namespace {
 
 // Adds the surviving lattice points of one body, bottom row first so that storage follows y.
-void add_points(Particles& p, const Lattice& lat, const VoidLayout& layout, double vy, double rho0, Body body) {
+void add_points(Particles<2>& p, const Lattice& lat, const VoidLayout& layout, double vy, double rho0, Body body) {
   const double a = lat.spacing;
   const double V0 = a * a;
   for (int j = 0; j < lat.rows; ++j)
     for (int i = 0; i < lat.columns; ++i) {
       if (layout.removed[lat.index(i, j)]) continue;
-      p.add(lat.x0 + (i + 0.5) * a, lat.y0 + (j + 0.5) * a, 0.0, vy, rho0 * V0, V0, body);
+      p.add({{lat.x0 + (i + 0.5) * a, lat.y0 + (j + 0.5) * a}}, {{0.0, vy}}, rho0 * V0, V0, body);
     }
 }
 
@@ -41,15 +44,15 @@ BodySummary summarize(const char* name, const Lattice& lat, const VoidLayout& la
   b.lattice_points = layout.lattice_points;
   b.material_points = layout.lattice_points - layout.removed_count;
   b.voids = layout.voids;
-  b.porosity = layout.porosity();
   return b;
 }
 
 }  // namespace
 
-InitialState build_initial_state(const Scene& s) {
-  InitialState st;
-  st.grid = build_grid_geometry(s);
+template <>
+InitialState<2> build_initial_state<2>(const Scene& s) {
+  InitialState<2> st;
+  st.grid = build_grid_geometry<2>(s);
 
   const double a = s.particle_spacing();
   const int columns = static_cast<int>(std::lround(s.width / a));
@@ -68,7 +71,8 @@ InitialState build_initial_state(const Scene& s) {
   }
 
   const std::size_t n = target.size() + flyer.size() - target_voids.removed_count - flyer_voids.removed_count;
-  st.particles.enable_strength(s.effects.plasticity, s.material.hardening_beta < 1.0);
+  const StrengthLaw strength = strength_of(s);
+  st.particles.enable_strength(has_stress(strength), has_back_stress(strength));
   st.particles.reserve(n);
   add_points(st.particles, flyer, flyer_voids, +s.velocity, s.material.density, Body::flyer);
   add_points(st.particles, target, target_voids, -s.velocity, s.material.density, Body::target);
@@ -77,5 +81,8 @@ InitialState build_initial_state(const Scene& s) {
   st.flyer = summarize("flyer", flyer, flyer_voids);
   return st;
 }
+
+template GridGeometry<2> build_grid_geometry<2>(const Scene&);
+template GridGeometry<3> build_grid_geometry<3>(const Scene&);
 
 }  // namespace mpmshock

@@ -1,6 +1,7 @@
 #include "mpmshock/snapshot.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
@@ -14,75 +15,75 @@ namespace {
 using h5::Compression;
 using h5::Handle;
 
-// Interleaves per-point fields into rows: rows[k * n + j] = fields[j][k].
-std::vector<double> rows_of(std::size_t count, std::initializer_list<const std::vector<double>*> fields) {
-  std::vector<double> out(count * fields.size());
-  std::size_t j = 0;
-  for (const std::vector<double>* f : fields) {
-    for (std::size_t k = 0; k < count; ++k) out[k * fields.size() + j] = (*f)[k];
-    ++j;
-  }
-  return out;
+// A per-point field of small vectors or matrices as the flat doubles HDF5 writes (N x D, N x D x D).
+template <class T>
+const double* flat(const std::vector<T>& v) {
+  static_assert(sizeof(T) % sizeof(double) == 0, "a field of doubles");
+  return reinterpret_cast<const double*>(v.data());
+}
+template <class T>
+void unflatten(const std::vector<double>& flat_values, std::vector<T>& v) {
+  v.resize(flat_values.size() * sizeof(double) / sizeof(T));
+  std::memcpy(static_cast<void*>(v.data()), flat_values.data(), flat_values.size() * sizeof(double));
 }
 
-// The inverse of rows_of.
-void split_rows(const std::vector<double>& rows, std::initializer_list<std::vector<double>*> fields) {
-  const std::size_t n = fields.size(), count = rows.size() / n;
-  std::size_t j = 0;
-  for (std::vector<double>* f : fields) {
-    f->resize(count);
-    for (std::size_t k = 0; k < count; ++k) (*f)[k] = rows[k * n + j];
-    ++j;
-  }
-}
+// The stored components of a deviator: xx, yy, xy (and yz, zx in 3D); zz = -(xx + yy).
+template <int D>
+constexpr hsize_t kDeviatorComponents = D == 2 ? 3 : 5;
 
-void write_particles(hid_t file, const Particles& p, const HugoniotTemperature* thermal, int level) {
+template <int D>
+void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperature* thermal, int level) {
   Handle group(H5Gcreate2(file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /particles");
   const hid_t g = group.get();
   const std::size_t n = p.size();
-  const hsize_t N = n;
+  const hsize_t N = n, d = D;
   const Compression always{level > 0 ? level : 1};  // fields that compress >100x: worth it at any setting
   const Compression chosen{level};
-  auto doubles = [&](const char* name, const std::vector<double>& v, std::vector<hsize_t> dims, const char* units,
+  auto doubles = [&](const char* name, const double* v, std::vector<hsize_t> dims, const char* units,
                      const char* what, Compression c) {
-    h5::write_dataset(g, name, H5T_NATIVE_DOUBLE, v.data(), dims, units, what, c);
+    h5::write_dataset(g, name, H5T_NATIVE_DOUBLE, v, dims, units, what, c);
   };
+  const char* per_depth = D == 2 ? " per metre of depth (plane strain)" : "";
 
   h5::write_dataset(g, "id", H5T_NATIVE_UINT32, p.id.data(), {N}, "", "stable material-point number", always);
   h5::write_dataset(g, "body", H5T_NATIVE_UINT8, p.body.data(), {N}, "", "0 flyer, 1 target", always);
-  doubles("position", rows_of(n, {&p.x, &p.y}), {N, 2}, "m", "x, y", chosen);
-  doubles("velocity", rows_of(n, {&p.vx, &p.vy}), {N, 2}, "m/s", "v_x, v_y", chosen);
-  doubles("mass", p.mass, {N}, "kg/m", "mass per metre of depth (plane strain)", always);
+  doubles("position", flat(p.x), {N, d}, "m", D == 2 ? "x, y" : "x, y, z", chosen);
+  doubles("velocity", flat(p.v), {N, d}, "m/s", D == 2 ? "v_x, v_y" : "v_x, v_y, v_z", chosen);
+  doubles("mass", p.m.data(), {N}, D == 2 ? "kg/m" : "kg", (std::string("mass") + per_depth).c_str(), always);
 
   std::vector<double> scalar(n);
   for (std::size_t q = 0; q < n; ++q) scalar[q] = p.volume(q);
-  doubles("volume", scalar, {N}, "m2", "volume per metre of depth (plane strain)", chosen);
+  doubles("volume", scalar.data(), {N}, D == 2 ? "m2" : "m3", (std::string("volume") + per_depth).c_str(), chosen);
   for (std::size_t q = 0; q < n; ++q) scalar[q] = p.density(q);
-  doubles("density", scalar, {N}, "kg/m3", "density of the material point", chosen);
-  doubles("pressure", p.pressure, {N}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)", chosen);
-  doubles("artificial_viscosity", p.viscosity, {N}, "Pa", "artificial viscous pressure q", chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->temperature(p.J(q), p.energy[q]) : std::nan("");
-  doubles("temperature", scalar, {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
-  doubles("internal_energy", p.energy, {N}, "J/kg", "specific internal energy, 0 at the reference state", chosen);
+  doubles("density", scalar.data(), {N}, "kg/m3", "density of the material point", chosen);
+  doubles("pressure", p.P.data(), {N}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)", chosen);
+  doubles("artificial_viscosity", p.q.data(), {N}, "Pa", "artificial viscous pressure q", chosen);
+  for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->temperature(p.J(q), p.E[q]) : std::nan("");
+  doubles("temperature", scalar.data(), {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
+  doubles("internal_energy", p.E.data(), {N}, "J/kg", "specific internal energy, 0 at the reference state", chosen);
 
   std::vector<double> tensor(9 * n, 0.0);
   for (std::size_t q = 0; q < n; ++q) {
-    const double pq = p.pressure[q] + p.viscosity[q];
-    const double sxx = p.has_strength() ? p.sxx[q] : 0.0, syy = p.has_strength() ? p.syy[q] : 0.0;
-    const double sxy = p.has_strength() ? p.sxy[q] : 0.0;
+    const double pq = p.P[q] + p.q[q];
+    const Deviator<D> s = p.has_strength() ? p.s[q] : Deviator<D>{};
     double* t = &tensor[9 * q];
-    t[0] = sxx - pq;
-    t[1] = t[3] = sxy;
-    t[4] = syy - pq;
-    t[8] = -(sxx + syy) - pq;
+    t[0] = s.xx - pq;
+    t[1] = t[3] = s.xy;
+    t[4] = s.yy - pq;
+    t[8] = s.zz() - pq;
+    if constexpr (D == 3) {
+      t[5] = t[7] = s.yz();
+      t[2] = t[6] = s.zx();
+    }
   }
-  doubles("stress", tensor, {N, 3, 3}, "Pa", "Cauchy stress s - (P + q) I, plane strain (zz non-zero)", chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = p.has_strength() ? p.plastic_strain[q] : 0.0;
-  doubles("plastic_strain", scalar, {N}, "", "effective plastic strain", chosen);
-  doubles("deformation_gradient", rows_of(n, {&p.Fxx, &p.Fxy, &p.Fyx, &p.Fyy}), {N, 2, 2}, "",
-          "F, in-plane (F_zz = 1), F[i][j] = dx_i/dX_j", chosen);
-  doubles("velocity_gradient", rows_of(n, {&p.Lxx, &p.Lxy, &p.Lyx, &p.Lyy}), {N, 2, 2}, "1/s",
-          "L = grad v of the last step, L[i][j] = dv_i/dx_j", chosen);
+  doubles("stress", tensor.data(), {N, 3, 3}, "Pa",
+          D == 2 ? "Cauchy stress s - (P + q) I, plane strain (zz non-zero)" : "Cauchy stress s - (P + q) I", chosen);
+  for (std::size_t q = 0; q < n; ++q) scalar[q] = p.has_strength() ? p.eps_p[q] : 0.0;
+  doubles("plastic_strain", scalar.data(), {N}, "", "effective plastic strain", chosen);
+  doubles("deformation_gradient", flat(p.F), {N, d, d}, "",
+          D == 2 ? "F, in-plane (F_zz = 1), F[i][j] = dx_i/dX_j" : "F[i][j] = dx_i/dX_j", chosen);
+  doubles("velocity_gradient", flat(p.L), {N, d, d}, "1/s", "L = grad v of the last step, L[i][j] = dv_i/dx_j",
+          chosen);
 }
 
 void write_bodies(hid_t g, const RunState& run) {
@@ -99,61 +100,71 @@ void write_bodies(hid_t g, const RunState& run) {
   }
 }
 
-void write_restart(hid_t file, const Particles& p, const RunState& run) {
+template <int D>
+void write_restart(hid_t file, const Particles<D>& p, const RunState& run) {
   Handle group(H5Gcreate2(file, "restart", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /restart");
   const hid_t g = group.get();
-  const std::size_t n = p.size();
-  const hsize_t N = n;
+  const hsize_t N = p.size(), C = kDeviatorComponents<D>;
   h5::write_double_attribute(g, "max_signal", run.clock.max_signal);
-  h5::write_int_attribute(g, "next_sample", run.schedule.next_sample);
-  h5::write_int_attribute(g, "next_snapshot", run.schedule.next_snapshot);
   h5::write_int_attribute(g, "snapshot_index", run.schedule.snapshot_index);
   h5::write_double_attribute(g, "last_dt", run.schedule.last_dt);
   const Totals& t = run.initial;
-  h5::write_doubles_attribute(g, "initial_totals",
-                              {t.mass, t.momentum_x, t.momentum_y, t.momentum_magnitude, t.kinetic, t.internal});
+  std::vector<double> totals = {t.mass};
+  for (int d = 0; d < D; ++d) totals.push_back(t.momentum[d]);
+  totals.insert(totals.end(), {t.momentum_magnitude, t.kinetic, t.internal});
+  h5::write_doubles_attribute(g, "initial_totals", totals);
   h5::write_string_attribute(g, "random_state",
                              "none: random numbers are drawn only at set-up (the void layout, stored here)");
   write_bodies(g, run);
-  h5::write_dataset(g, "volume0", H5T_NATIVE_DOUBLE, p.volume0.data(), {N}, "m2", "reference volume V0", {1});
+  h5::write_dataset(g, "volume0", H5T_NATIVE_DOUBLE, p.V0.data(), {N}, D == 2 ? "m2" : "m3", "reference volume V0",
+                    {1});
+  const char* components = D == 2 ? "xx, yy, xy (zz = -(xx + yy))" : "xx, yy, xy, yz, zx (zz = -(xx + yy))";
   if (p.has_strength())
-    h5::write_dataset(g, "deviatoric_stress", H5T_NATIVE_DOUBLE, rows_of(n, {&p.sxx, &p.syy, &p.sxy}).data(),
-                      {N, 3}, "Pa", "s_xx, s_yy, s_xy (s_zz = -(s_xx + s_yy))");
+    h5::write_dataset(g, "deviatoric_stress", H5T_NATIVE_DOUBLE, flat(p.s), {N, C}, "Pa",
+                      (std::string("deviatoric stress s: ") + components).c_str());
   if (p.has_back_stress())
-    h5::write_dataset(g, "back_stress", H5T_NATIVE_DOUBLE, rows_of(n, {&p.axx, &p.ayy, &p.axy}).data(), {N, 3}, "Pa",
-                      "alpha_xx, alpha_yy, alpha_xy (kinematic hardening)");
+    h5::write_dataset(g, "back_stress", H5T_NATIVE_DOUBLE, flat(p.alpha), {N, C}, "Pa",
+                      (std::string("back stress alpha (kinematic hardening): ") + components).c_str());
 }
 
-void write_grid(hid_t file, const SnapshotOptions& o) {
-  const Grid& grid = *o.grid;
-  const GridGeometry& geo = grid.geo;
+template <int D>
+void write_grid(hid_t file, const SnapshotOptions<D>& o) {
+  const Grid<D>& grid = *o.grid;
+  const GridGeometry<D>& geo = grid.geo;
   Handle group(H5Gcreate2(file, "grid", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /grid");
   const hid_t g = group.get();
-  h5::write_doubles_attribute(g, "origin", {0.0, geo.y_min});
+  h5::write_doubles_attribute(g, "origin", D == 2 ? std::vector<double>{0.0, geo.y_min}
+                                                  : std::vector<double>{0.0, geo.y_min, 0.0});
   h5::write_double_attribute(g, "spacing", geo.h);
-  h5::write_doubles_attribute(g, "nodes", {static_cast<double>(geo.nx), static_cast<double>(geo.ny)});
+  std::vector<double> counts = {static_cast<double>(geo.nx), static_cast<double>(geo.ny)};
+  if (D == 3) counts.push_back(static_cast<double>(geo.nz));
+  h5::write_doubles_attribute(g, "nodes", counts);
   const std::size_t nodes = geo.nodes();
-  std::vector<double> mass(nodes, 0.0), vx(nodes, 0.0), vy(nodes, 0.0);
-  const std::size_t b = geo.node(0, o.grid_row_begin), e = geo.node(0, o.grid_row_end);
+  std::vector<double> mass(nodes, 0.0);
+  std::vector<std::vector<double>> velocity(D, std::vector<double>(nodes, 0.0));
+  const std::size_t b = geo.row_start(o.grid_rows.begin), e = geo.row_start(o.grid_rows.end);
   for (std::size_t i = b; i < e; ++i) {
     if (!(grid.m[i] > 0.0)) continue;
     mass[i] = grid.m[i];
-    vx[i] = grid.vx[i];
-    vy[i] = grid.vy[i];
+    for (int d = 0; d < D; ++d) velocity[d][i] = grid.v[i][d];
   }
-  // Row j, column i is the node at (i h, y_min + j h).
-  const hsize_t rows = static_cast<hsize_t>(geo.ny), cols = static_cast<hsize_t>(geo.nx);
-  h5::write_dataset(g, "mass", H5T_NATIVE_DOUBLE, mass.data(), {rows, cols}, "kg/m", "nodal mass m_i", {1});
-  h5::write_dataset(g, "velocity_x", H5T_NATIVE_DOUBLE, vx.data(), {rows, cols}, "m/s",
-                    "nodal v_x after the last step's momentum update", {1});
-  h5::write_dataset(g, "velocity_y", H5T_NATIVE_DOUBLE, vy.data(), {rows, cols}, "m/s",
-                    "nodal v_y after the last step's momentum update", {1});
+  // Row j (y), layer k (z), column i (x) is the node at (i h, y_min + j h, k h).
+  std::vector<hsize_t> dims = {static_cast<hsize_t>(geo.ny)};
+  if (D == 3) dims.push_back(static_cast<hsize_t>(geo.nz));
+  dims.push_back(static_cast<hsize_t>(geo.nx));
+  h5::write_dataset(g, "mass", H5T_NATIVE_DOUBLE, mass.data(), dims, "kg/m", "nodal mass m_i", {1});
+  const char* names[3] = {"velocity_x", "velocity_y", "velocity_z"};
+  const char* what[3] = {"nodal v_x after the last step's momentum update", "nodal v_y after the last step's momentum update",
+                         "nodal v_z after the last step's momentum update"};
+  for (int d = 0; d < D; ++d)
+    h5::write_dataset(g, names[d], H5T_NATIVE_DOUBLE, velocity[d].data(), dims, "m/s", what[d], {1});
 }
 
 }  // namespace
 
-void write_snapshot(const std::string& path, const Particles& p, const HugoniotTemperature* thermal,
-                    const RunState& run, const SnapshotOptions& options) {
+template <int D>
+void write_snapshot(const std::string& path, const Particles<D>& p, const HugoniotTemperature* thermal,
+                    const RunState& run, const SnapshotOptions<D>& options) {
   h5::prepare_library();
   const std::string tmp = path + ".tmp";
   try {
@@ -164,8 +175,10 @@ void write_snapshot(const std::string& path, const Particles& p, const HugoniotT
       h5::write_int_attribute(f, "step", run.clock.steps);
       h5::write_int_attribute(f, "snapshot", run.schedule.snapshot_index);
       h5::write_int_attribute(f, "particle_count", static_cast<std::int64_t>(p.size()));
-      h5::write_string_attribute(f, "units",
-                                 "SI: m, s, kg, Pa, K, J/kg; 2D plane strain, extensive quantities per metre of depth");
+      h5::write_string_attribute(f, "units", D == 2 ? "SI: m, s, kg, Pa, K, J/kg; 2D plane strain, extensive "
+                                                      "quantities per metre of depth"
+                                                    : "SI: m, s, kg, Pa, K, J/kg; 3D");
+      h5::write_int_attribute(f, "dimension", D);
       h5::write_string_attribute(f, "scene", run.scene_text);
       h5::write_string_attribute(f, "mpmshock_version", kVersion);
       h5::write_int_attribute(f, "format_version", 1);
@@ -193,25 +206,28 @@ SnapshotHeader read_snapshot_header(const std::string& path) {
     h.time = h5::read_double_attribute(file.get(), "time");
     h.points = static_cast<std::size_t>(h5::read_int_attribute(file.get(), "particle_count"));
     h.grid = h5::has_link(file.get(), "grid");
+    h.dimension = h5::has_attribute(file.get(), "dimension") ? static_cast<int>(h5::read_int_attribute(file.get(), "dimension")) : 2;
     return h;
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("snapshot " + path + ": " + e.what());
   }
 }
 
-Restart read_snapshot(const std::string& path) {
+template <int D>
+Restart<D> read_snapshot(const std::string& path) {
   h5::prepare_library();
   try {
     Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open it as HDF5");
     const hid_t f = file.get();
     if (!h5::has_attribute(f, "format_version") || !h5::has_link(f, "restart"))
       throw std::runtime_error("not an mpmshock snapshot with restart data");
-    Restart r;
+    Restart<D> r;
     RunState& run = r.run;
     run.scene_text = h5::read_string_attribute(f, "scene");
     run.clock.time = h5::read_double_attribute(f, "time");
     run.clock.steps = h5::read_int_attribute(f, "step");
     const auto n = static_cast<std::size_t>(h5::read_int_attribute(f, "particle_count"));
+    const hsize_t d = D, C = kDeviatorComponents<D>;
 
     Handle rg(H5Gopen2(f, "restart", H5P_DEFAULT), H5Gclose, "open /restart");
     const hid_t g = rg.get();
@@ -219,8 +235,12 @@ Restart read_snapshot(const std::string& path) {
     run.schedule.snapshot_index = static_cast<int>(h5::read_int_attribute(g, "snapshot_index"));
     run.schedule.last_dt = h5::read_double_attribute(g, "last_dt");
     const std::vector<double> t = h5::read_doubles_attribute(g, "initial_totals");
-    if (t.size() != 6) throw std::runtime_error("/restart initial_totals has the wrong length");
-    run.initial = {t[0], t[1], t[2], t[3], t[4], t[5]};
+    if (t.size() != 4 + D) throw std::runtime_error("/restart initial_totals has the wrong length");
+    run.initial.mass = t[0];
+    for (int k = 0; k < D; ++k) run.initial.momentum[k] = t[1 + k];
+    run.initial.momentum_magnitude = t[1 + D];
+    run.initial.kinetic = t[2 + D];
+    run.initial.internal = t[3 + D];
     for (BodySummary* b : {&run.target, &run.flyer}) {
       b->name = b == &run.target ? "target" : "flyer";
       const std::string prefix = b->name + "_";
@@ -231,36 +251,44 @@ Restart read_snapshot(const std::string& path) {
         b->y_bottom = extent[0];
         b->y_top = extent[1];
       }
-      b->porosity = static_cast<double>(b->lattice_points) / static_cast<double>(b->material_points);
       const std::vector<double> v = h5::read_doubles(g, (prefix + "voids").c_str(), 0, {3});
       for (std::size_t k = 0; k + 2 < v.size(); k += 3) b->voids.push_back({v[k], v[k + 1], v[k + 2]});
     }
 
-    Particles& p = r.points;
+    Particles<D>& p = r.points;
     const bool strength = h5::has_link(g, "deviatoric_stress"), back = h5::has_link(g, "back_stress");
     p.id = h5::read_uint32(f, "/particles/id", n);
     const std::vector<std::uint8_t> body = h5::read_uint8(f, "/particles/body", n);
     p.body.resize(n);
     for (std::size_t q = 0; q < n; ++q) p.body[q] = body[q] ? Body::target : Body::flyer;
-    split_rows(h5::read_doubles(f, "/particles/position", n, {2}), {&p.x, &p.y});
-    split_rows(h5::read_doubles(f, "/particles/velocity", n, {2}), {&p.vx, &p.vy});
-    p.mass = h5::read_doubles(f, "/particles/mass", n, {});
-    p.volume0 = h5::read_doubles(g, "volume0", n, {});
-    split_rows(h5::read_doubles(f, "/particles/deformation_gradient", n, {2, 2}), {&p.Fxx, &p.Fxy, &p.Fyx, &p.Fyy});
-    split_rows(h5::read_doubles(f, "/particles/velocity_gradient", n, {2, 2}), {&p.Lxx, &p.Lxy, &p.Lyx, &p.Lyy});
-    p.energy = h5::read_doubles(f, "/particles/internal_energy", n, {});
-    p.pressure = h5::read_doubles(f, "/particles/pressure", n, {});
-    p.viscosity = h5::read_doubles(f, "/particles/artificial_viscosity", n, {});
+    unflatten(h5::read_doubles(f, "/particles/position", n, {d}), p.x);
+    unflatten(h5::read_doubles(f, "/particles/velocity", n, {d}), p.v);
+    p.m = h5::read_doubles(f, "/particles/mass", n, {});
+    p.V0 = h5::read_doubles(g, "volume0", n, {});
+    unflatten(h5::read_doubles(f, "/particles/deformation_gradient", n, {d, d}), p.F);
+    unflatten(h5::read_doubles(f, "/particles/velocity_gradient", n, {d, d}), p.L);
+    p.E = h5::read_doubles(f, "/particles/internal_energy", n, {});
+    p.P = h5::read_doubles(f, "/particles/pressure", n, {});
+    p.q = h5::read_doubles(f, "/particles/artificial_viscosity", n, {});
+    p.work.assign(n, 0.0);
     p.enable_strength(strength, back);
     if (strength) {
-      split_rows(h5::read_doubles(g, "deviatoric_stress", n, {3}), {&p.sxx, &p.syy, &p.sxy});
-      p.plastic_strain = h5::read_doubles(f, "/particles/plastic_strain", n, {});
+      unflatten(h5::read_doubles(g, "deviatoric_stress", n, {C}), p.s);
+      p.eps_p = h5::read_doubles(f, "/particles/plastic_strain", n, {});
     }
-    if (back) split_rows(h5::read_doubles(g, "back_stress", n, {3}), {&p.axx, &p.ayy, &p.axy});
+    if (back) unflatten(h5::read_doubles(g, "back_stress", n, {C}), p.alpha);
     return r;
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("snapshot " + path + ": " + e.what());
   }
 }
+
+#define MPMSHOCK_INSTANTIATE(D)                                                                                  \
+  template void write_snapshot<D>(const std::string&, const Particles<D>&, const HugoniotTemperature*,            \
+                                  const RunState&, const SnapshotOptions<D>&);                                    \
+  template Restart<D> read_snapshot<D>(const std::string&);
+MPMSHOCK_INSTANTIATE(2)
+MPMSHOCK_INSTANTIATE(3)
+#undef MPMSHOCK_INSTANTIATE
 
 }  // namespace mpmshock

@@ -5,21 +5,22 @@
 #include <limits>
 
 #include "check.hpp"
+#include "mpmshock/setup.hpp"
 #include "mpmshock/simulation.hpp"
 
 using namespace mpmshock;
 
 namespace {
 
-void expect_stop(const char* what, const std::function<void(Particles&)>& plant, const char* reason) {
+void expect_stop(const char* what, const std::function<void(Particles<2>&)>& plant, const char* reason) {
   const Scene scene = parse_scene(
       "velocity = 1000 m/s\nporosity = 1\nwidth = 40 um\ntarget_height = 100 um\nflyer_height = 100 um\n"
       "cell_size = 10 um\nend_time = 50 ns\n",
       "faults");
-  InitialState initial = build_initial_state(scene);
+  InitialState<2> initial = build_initial_state<2>(scene);
   constexpr std::size_t victim = 123;
   plant(initial.particles);
-  Simulation sim(scene, initial.grid, std::move(initial.particles));
+  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
   const StepStatus s = sim.step(sim.stable_time_step());
   const std::string text = sim.describe(s);
   std::printf("%s: %s\n", what, text.c_str());
@@ -33,10 +34,10 @@ void expect_stop(const char* what, const std::function<void(Particles&)>& plant,
 }  // namespace
 
 int main() {
-  expect_stop("NaN energy", [](Particles& p) { p.energy[123] = std::numeric_limits<double>::quiet_NaN(); },
+  expect_stop("NaN energy", [](Particles<2>& p) { p.E[123] = std::numeric_limits<double>::quiet_NaN(); },
               "non-finite pressure or energy");
-  expect_stop("inverted point", [](Particles& p) { p.Fyy[123] = -0.5; }, "J = det F <= 0");
-  expect_stop("over-compressed point", [](Particles& p) { p.Fyy[123] = 0.2; }, "compressed past the Hugoniot's limit");
-  expect_stop("runaway speed", [](Particles& p) { p.vy[123] = 1e6; }, "runaway speed");
+  expect_stop("inverted point", [](Particles<2>& p) { p.F[123](1, 1) = -0.5; }, "J = det F <= 0");
+  expect_stop("over-compressed point", [](Particles<2>& p) { p.F[123](1, 1) = 0.2; }, "compressed past the Hugoniot's limit");
+  expect_stop("runaway speed", [](Particles<2>& p) { p.v[123][1] = 1e6; }, "runaway speed");
   return check::result();
 }

@@ -17,6 +17,7 @@
 #include "check.hpp"
 #include "mpmshock/diagnostics.hpp"
 #include "mpmshock/run.hpp"
+#include "mpmshock/setup.hpp"
 #include "mpmshock/simulation.hpp"
 #include "mpmshock/temperature.hpp"
 
@@ -32,17 +33,17 @@ std::string expectation(const std::string& path) {
 }
 
 // Every point finite and physical; returns the number of bad points, printing the first.
-std::size_t bad_points(const Particles& p, const HugoniotTemperature& thermal, double t) {
+std::size_t bad_points(const Particles<2>& p, const HugoniotTemperature& thermal, double t) {
   std::size_t bad = 0;
   for (std::size_t q = 0; q < p.size(); ++q) {
-    const double J = p.J(q), T = thermal.temperature(J, p.energy[q]);
-    const bool finite = std::isfinite(p.x[q]) && std::isfinite(p.y[q]) && std::isfinite(p.vx[q]) &&
-                        std::isfinite(p.vy[q]) && std::isfinite(p.energy[q]) && std::isfinite(p.pressure[q]) &&
-                        std::isfinite(p.viscosity[q]) && std::isfinite(J);
+    const double J = p.J(q), T = thermal.temperature(J, p.E[q]);
+    const bool finite = std::isfinite(p.x[q][0]) && std::isfinite(p.x[q][1]) && std::isfinite(p.v[q][0]) &&
+                        std::isfinite(p.v[q][1]) && std::isfinite(p.E[q]) && std::isfinite(p.P[q]) &&
+                        std::isfinite(p.q[q]) && std::isfinite(J);
     if (finite && J > 0 && p.density(q) > 0 && T > 0) continue;
     if (bad++ == 0)
       std::fprintf(stderr, "t = %g s: point %u: J = %g, density = %g, T = %g, E = %g, P = %g\n", t, p.id[q], J,
-                   p.density(q), T, p.energy[q], p.pressure[q]);
+                   p.density(q), T, p.E[q], p.P[q]);
   }
   return bad;
 }
@@ -58,7 +59,7 @@ int main(int argc, char** argv) {
   if (expect.rfind(" refused ", 0) == 0) {
     const std::regex pattern(expect.substr(9));
     try {
-      build_initial_state(load_scene(path));
+      build_initial_state<2>(load_scene(path));
       check::fail(__FILE__, __LINE__, "the scene was not refused");
     } catch (const SceneError& e) {
       std::printf("refused: %s\n", e.what());
@@ -80,8 +81,8 @@ int main(int argc, char** argv) {
   }
 
   const Scene scene = load_scene(path);
-  InitialState initial = build_initial_state(scene);
-  Simulation sim(scene, initial.grid, std::move(initial.particles));
+  InitialState<2> initial = build_initial_state<2>(scene);
+  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
   const HugoniotTemperature thermal(scene.material);
   const Totals start = compute_totals(sim.particles());
   double worst_energy = 0, worst_momentum = 0;
@@ -98,7 +99,7 @@ int main(int argc, char** argv) {
     const Totals now = compute_totals(sim.particles());
     CHECK(bad_points(sim.particles(), thermal, sim.time()) == 0);
     CHECK(now.mass == start.mass);
-    worst_momentum = std::max(worst_momentum, std::hypot(now.momentum_x, now.momentum_y) / start.momentum_magnitude);
+    worst_momentum = std::max(worst_momentum, std::hypot(now.momentum[0], now.momentum[1]) / start.momentum_magnitude);
     worst_energy = std::max(worst_energy, std::abs(now.total_energy() - start.total_energy()) / start.total_energy());
   }
   std::printf("%lld steps to %.4g ns, %zu points: worst relative momentum %.2e, worst relative energy error %.2e\n",

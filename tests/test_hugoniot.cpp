@@ -8,6 +8,7 @@
 
 #include "check.hpp"
 #include "mpmshock/diagnostics.hpp"
+#include "mpmshock/setup.hpp"
 #include "mpmshock/simulation.hpp"
 #include "mpmshock/temperature.hpp"
 
@@ -25,15 +26,15 @@ struct Case {
 
 // Height of the shock front in the target: where the row-averaged density first exceeds the
 // midpoint between the initial and shocked densities, scanning down from the top.
-double shock_front(const Particles& p, double spacing, double rho_mid) {
+double shock_front(const Particles<2>& p, double spacing, double rho_mid) {
   double top = 0;
   for (std::size_t q = 0; q < p.size(); ++q)
-    if (p.body[q] == Body::target) top = std::max(top, p.y[q]);
+    if (p.body[q] == Body::target) top = std::max(top, p.x[q][1]);
   const int bins = static_cast<int>(top / spacing) + 2;
   std::vector<double> sum(bins, 0.0), count(bins, 0.0);
   for (std::size_t q = 0; q < p.size(); ++q) {
-    if (p.body[q] != Body::target || p.y[q] < 0) continue;
-    const int b = static_cast<int>(p.y[q] / spacing);
+    if (p.body[q] != Body::target || p.x[q][1] < 0) continue;
+    const int b = static_cast<int>(p.x[q][1] / spacing);
     sum[b] += p.density(q);
     count[b] += 1;
   }
@@ -55,8 +56,8 @@ void run_case(const Case& c) {
                 "cell_size = 10 um\nend_time = 200 ns\nshape_function = %s\nplasticity = %s\nhardening_beta = %g\n",
                 v, c.shape, c.plasticity ? "on" : "off", c.hardening_beta);
   const Scene scene = parse_scene(text, "hugoniot");
-  InitialState initial = build_initial_state(scene);
-  Simulation sim(scene, initial.grid, std::move(initial.particles));
+  InitialState<2> initial = build_initial_state<2>(scene);
+  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
   const Totals start = compute_totals(sim.particles());
   const HugoniotTemperature thermal(scene.material);
   const double T_H = thermal.hugoniot_temperature(rho0 / rho_H);
@@ -90,21 +91,21 @@ void run_case(const Case& c) {
   const double Us_measured = A.colPivHouseholderQr().solve(b)(0) + v;
 
   // Plateau: the middle half of the shocked target, away from the impact plane and the front.
-  const Particles& p = sim.particles();
+  const Particles<2>& p = sim.particles();
   const double front = ys.back();
   double rho = 0, P = 0, T = 0, count = 0;
   for (std::size_t q = 0; q < p.size(); ++q) {
-    if (p.body[q] != Body::target || p.y[q] < 0.25 * front || p.y[q] > 0.75 * front) continue;
+    if (p.body[q] != Body::target || p.x[q][1] < 0.25 * front || p.x[q][1] > 0.75 * front) continue;
     rho += p.density(q);
-    P += p.pressure[q];
-    T += thermal.temperature(p.J(q), p.energy[q]);
+    P += p.P[q];
+    T += thermal.temperature(p.J(q), p.E[q]);
     count += 1;
   }
   rho /= count;
   P /= count;
   T /= count;
   const Totals end = compute_totals(p);
-  const double momentum = std::hypot(end.momentum_x, end.momentum_y) / start.momentum_magnitude;
+  const double momentum = std::hypot(end.momentum[0], end.momentum[1]) / start.momentum_magnitude;
   const double energy = std::abs(end.total_energy() - start.total_energy()) / start.total_energy();
   std::printf("%-8s v=%4.0f %-6s beta %.1f rho %.1f (%+.2f%%)  P %.3f GPa (%+.2f%%)  Us %.0f (%+.2f%%)  T %.1f K vs %.1f "
               "(%+.2f%%)  momentum %.1e  energy %.1e\n",

@@ -8,19 +8,19 @@
 using namespace mpmshock;
 
 template <class Shape>
-void check_shape(const GridGeometry& g, std::mt19937_64& rng) {
+void check_shape(const GridGeometry<2>& g, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> ux(0.0, g.width()), uy(g.y_min + 3 * g.h, g.y_max() - 3 * g.h);
   for (int trial = 0; trial < 2000; ++trial) {
     const double x = ux(rng), y = uy(rng);
-    const auto st = Shape::at(x, y, g);
+    const auto st = Shape::at(Vec<2>{{x, y}}, g);
     double sum = 0, gx = 0, gy = 0, xs = 0, ys = 0, dxs_dx = 0, dys_dy = 0;
     for (int b = 0; b < Shape::support; ++b)
       for (int a = 0; a < Shape::support; ++a) {
-        const double N = st.wx[a] * st.wy[b];
+        const double N = st.w[0][a] * st.w[1][b];
         CHECK(N >= -1e-15);
         sum += N;
-        gx += st.gx[a] * st.wy[b];
-        gy += st.wx[a] * st.gy[b];
+        gx += st.g[0][a] * st.w[1][b];
+        gy += st.w[0][a] * st.g[1][b];
         // Node coordinates, unwrapped to the point's side of the seam.
         double xi = st.column[a] * g.h;
         if (xi - x > 0.5 * g.width()) xi -= g.width();
@@ -28,8 +28,8 @@ void check_shape(const GridGeometry& g, std::mt19937_64& rng) {
         const double yi = g.y_min + (st.row0 + b) * g.h;
         xs += N * xi;
         ys += N * yi;
-        dxs_dx += st.gx[a] * st.wy[b] * xi;
-        dys_dy += st.wx[a] * st.gy[b] * yi;
+        dxs_dx += st.g[0][a] * st.w[1][b] * xi;
+        dys_dy += st.w[0][a] * st.g[1][b] * yi;
       }
     CHECK_NEAR(sum, 1.0, 1e-12);                    // partition of unity
     CHECK_NEAR(gx * g.h, 0.0, 1e-12);               // gradients sum to zero
@@ -43,17 +43,17 @@ void check_shape(const GridGeometry& g, std::mt19937_64& rng) {
   // Gradients against central differences of the weights, away from kinks.
   for (int trial = 0; trial < 200; ++trial) {
     const double x = ux(rng), y = uy(rng), e = 1e-7 * g.h;
-    const auto st = Shape::at(x, y, g), sx = Shape::at(x + e, y, g), sxm = Shape::at(x - e, y, g);
+    const auto st = Shape::at(Vec<2>{{x, y}}, g), sx = Shape::at(Vec<2>{{x + e, y}}, g), sxm = Shape::at(Vec<2>{{x - e, y}}, g);
     if (sx.column[0] != sxm.column[0] || sx.row0 != sxm.row0) continue;
     for (int a = 0; a < Shape::support; ++a) {
-      const double fd = (sx.wx[a] - sxm.wx[a]) / (2 * e);
-      CHECK_NEAR(st.gx[a] * g.h, fd * g.h, 1e-5);
+      const double fd = (sx.w[0][a] - sxm.w[0][a]) / (2 * e);
+      CHECK_NEAR(st.g[0][a] * g.h, fd * g.h, 1e-5);
     }
   }
 }
 
 int main() {
-  GridGeometry g;
+  GridGeometry<2> g;
   g.nx = 7;
   g.ny = 12;
   g.h = 2.5e-6;
@@ -66,9 +66,9 @@ int main() {
   check_shape<QuadraticBSplineShape>(g, rng);
 
   // Periodic seam: a point just left of x = width touches column 0 as its right neighbour.
-  const auto st = BilinearShape::at(g.width() * (1 - 1e-9), 0.0, g);
+  const auto st = BilinearShape::at(Vec<2>{{g.width() * (1 - 1e-9), 0.0}}, g);
   CHECK(st.column[0] == g.nx - 1 && st.column[1] == 0);
-  const auto sb = QuadraticBSplineShape::at(1e-9 * g.h, 0.0, g);
+  const auto sb = QuadraticBSplineShape::at(Vec<2>{{1e-9 * g.h, 0.0}}, g);
   CHECK(sb.column[0] == g.nx - 1 && sb.column[1] == 0 && sb.column[2] == 1);
   return check::result();
 }

@@ -82,12 +82,12 @@ int main() {
     Scene s = parse_scene("porosity = 1.4\nvoid_radius = 10 um\ncell_size = 5 um\nwidth = 0.2 mm\n"
                           "target_height = 0.3 mm\nflyer_height = 0.3 mm\n",
                           "t.scene");
-    const InitialState st = build_initial_state(s);
-    CHECK_REL(st.target.porosity, 1.4, 0.005);
-    CHECK_REL(st.porosity(), 1.4, 0.005);
+    const InitialState<2> st = build_initial_state<2>(s);
+    CHECK_REL(st.target.porosity(), 1.4, 0.005);
+    CHECK_REL(porosity_of(st.target, st.flyer), 1.4, 0.005);
     CHECK(st.flyer.material_points == st.target.material_points);
     CHECK(st.particles.size() == st.flyer.material_points + st.target.material_points);
-    CHECK_THROWS_WITH(build_initial_state(parse_scene("porosity = 2.5\nvoid_radius = 10 um\ncell_size = 5 um\n"
+    CHECK_THROWS_WITH(build_initial_state<2>(parse_scene("porosity = 2.5\nvoid_radius = 10 um\ncell_size = 5 um\n"
                                                       "width = 0.2 mm\ntarget_height = 0.3 mm\n"
                                                       "flyer_height = 0.3 mm\nvoid_min_gap = 5 um\n",
                                                       "t.scene")),

@@ -1,14 +1,22 @@
-// Artificial bulk viscosity for shock capturing (physics-notes section 4):
-// q = rho (A1 c h |tr D| + A2 h^2 (tr D)^2), in compression (tr D < 0) only.
+// Artificial bulk viscosity for shock capturing (physics-notes section 4), one type per choice:
+//
+//   NoViscosity          q = 0
+//   ArtificialViscosity  q = rho (A1 c h |tr D| + A2 h^2 (tr D)^2), in compression (tr D < 0) only
 #pragma once
 
 namespace mpmshock {
 
+struct NoViscosity {
+  static constexpr bool active = false;
+};
+
 struct ArtificialViscosity {
+  static constexpr bool active = true;
   double linear;     // A1
   double quadratic;  // A2
 
-  // rho: current density, c: bulk sound speed, h: cell size, trD: volumetric strain rate.
+  // The viscous pressure q. rho: current density, c: bulk sound speed, h: cell size, trD:
+  // volumetric strain rate.
   double pressure(double rho, double c, double h, double trD) const {
     if (trD >= 0.0) return 0.0;
     const double rate = -trD;

@@ -1,52 +1,114 @@
-// The constitutive update of every material point from its velocity gradient L and the work the
+// The constitutive update of a material point from its velocity gradient L and the work the
 // step's nodal forces did on it (see velocity_gradient_work_and_move): internal energy E += work
 // (compression, plastic and viscous work alike, exactly what the kinetic energy lost);
-// F <- (I + dt L) F; deviatoric stress by the Jaumann rate and radial return (plasticity);
-// Mie-Grüneisen pressure from the new volume and energy; artificial viscosity q (compression only).
+// F <- (I + dt L) F; the deviatoric stress by the strength law; the pressure from the equation of
+// state at the new volume and energy; the artificial viscous pressure q. One function per point,
+// pure and grid-free, over the law types the model chose, so tests drive it directly.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "mpmshock/model.hpp"
+#include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 
 namespace mpmshock {
 
-// Which strength model runs, resolved at setup: none (hydrodynamic), von Mises with isotropic
-// hardening only (hardening_beta = 1: no back stress to store), or mixed hardening.
-enum class Strength { none, isotropic, mixed };
-
+template <int D>
 struct PointState {
-  // In: the velocity gradient and the work of the step's forces [J/kg]. In/out: everything else.
-  double Lxx, Lxy, Lyx, Lyy;
-  double work;
-  double Fxx, Fxy, Fyx, Fyy;
+  Mat<D> L;     // in: the velocity gradient
+  double work;  // in: the work of the step's forces [J/kg]
+  Mat<D> F;
   double E, P, q;
-  Deviator s, alpha;
+  Deviator<D> s, alpha;
   double eps_p;
 };
 
-// One point, one step. Pure and grid-free, so tests can drive it directly.
-// Returns the point's signal speed (for the next time step), or a negative number if the new
-// state is not physical (J <= the EOS limit, or a non-finite result).
-template <Strength S, bool Viscous>
-double update_point(PointState& st, const Model& model, double dt);
+// One point, one step. Returns the point's signal speed (for the next time step), or a negative
+// number if the new state is not physical (J <= the EOS limit, or a non-finite result). Inlined
+// into the loop over points: as a call it costs 40 % more instructions per point.
+template <int D, class Strength, class Viscosity>
+[[gnu::always_inline]] inline double update_point(PointState<D>& st, const MieGruneisen& eos, const Strength& strength, const Viscosity& viscosity,
+                    double h, double dt) {
+  const StrainRate<D> rate = strain_rate(st.L);
+
+  // Energy: the exact work of the step's nodal forces on the point (compression, plastic and
+  // viscous work alike), which is what the points' kinetic energy lost.
+  st.E += st.work;
+
+  // Kinematics: F^{n+1} = (I + dt L) F^n.
+  Mat<D> A;
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) A(i, j) = i == j ? 1.0 + dt * st.L(i, j) : dt * st.L(i, j);
+  st.F = product(A, st.F);
+  const double J = det(st.F);
+  if (!(J > eos.limiting_compression())) return -1.0;
+  const double rho = eos.rho0() / J;
+
+  if constexpr (Strength::has_stress) strength.update(st.s, st.alpha, st.eps_p, rate, dt);
+
+  // Pressure from the new volume and energy; artificial viscosity from this step's compression rate.
+  const MieGruneisen::State eos_state = eos.state(J, st.E);
+  st.P = eos_state.pressure;
+  if (!std::isfinite(st.E) || !std::isfinite(st.P)) return -1.0;
+  const double c2_bulk = std::max(eos_state.sound_speed_squared, 0.0);
+  double c2 = c2_bulk;  // longitudinal: bulk plus shear
+  if constexpr (Strength::has_stress) c2 += (4.0 / 3.0) * strength.shear_modulus / rho;
+  if constexpr (!Viscosity::active) {
+    st.q = 0.0;
+    return std::sqrt(c2);
+  } else {
+    const double c_bulk = std::sqrt(c2_bulk);
+    st.q = viscosity.pressure(rho, c_bulk, h, rate.trace());
+    // Fastest signal at this point: longitudinal sound speed plus the viscous speed.
+    const double Q = viscosity.signal(c_bulk, h, rate.trace());
+    return Q + std::sqrt(Q * Q + c2);
+  }
+}
 
 struct StressUpdateResult {
-  double max_signal = 0.0;           // fastest |v| + sound (+ viscous) speed, for the next dt
+  double max_signal = 0.0;                  // fastest |v| + sound (+ viscous) speed, for the next dt
   std::size_t first_bad = ~std::size_t{0};  // lowest index of a point in a bad state, if any
 };
 
-using StressUpdate = StressUpdateResult (*)(Particles&, const Model&, double dt);
+// The update of every point, for one choice of laws.
+template <int D, class Strength, class Viscosity>
+StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, double dt) {
+  const Strength& strength = std::get<Strength>(model.strength);
+  const Viscosity& viscosity = std::get<Viscosity>(model.viscosity);
+  double max_signal = 0.0;
+  std::size_t first_bad = ~std::size_t{0};
+  const double speed_limit2 = model.speed_limit * model.speed_limit;
+#pragma omp parallel for schedule(dynamic, kChunk) reduction(max : max_signal) reduction(min : first_bad)
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    PointState<D> st{pts.L[p], pts.work[p], pts.F[p], pts.E[p], pts.P[p], pts.q[p], {}, {}, 0.0};
+    if constexpr (Strength::has_stress) {
+      st.s = pts.s[p];
+      st.eps_p = pts.eps_p[p];
+    }
+    if constexpr (Strength::has_back_stress) st.alpha = pts.alpha[p];
+    const double signal = update_point<D>(st, model.eos, strength, viscosity, model.cell_size, dt);
+    pts.F[p] = st.F;
+    pts.E[p] = st.E;
+    pts.P[p] = st.P;
+    pts.q[p] = st.q;
+    if constexpr (Strength::has_stress) {
+      pts.s[p] = st.s;
+      pts.eps_p[p] = st.eps_p;
+    }
+    if constexpr (Strength::has_back_stress) pts.alpha[p] = st.alpha;
+    const double speed2 = dot(pts.v[p], pts.v[p]);
+    if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;
+    max_signal = std::max(max_signal, std::sqrt(speed2) + signal);
+  }
+  return {max_signal, first_bad};
+}
 
-// The update for a set of effects, chosen once at setup.
-StressUpdate select_stress_update(Strength strength, bool artificial_viscosity);
-
-// The strength model a scene asks for.
-Strength strength_of(const Scene& scene);
-
-// The signal speed of a point in its current state (|v| + longitudinal sound speed), for the
-// first time step.
-double initial_signal_speed(const Particles& p, const Model& model);
+// The signal speed of the fastest point in its current state (|v| + longitudinal sound speed),
+// for the first time step.
+template <int D>
+double initial_signal_speed(const Particles<D>& pts, const Model& model);
 
 }  // namespace mpmshock

@@ -8,13 +8,14 @@ namespace mpmshock {
 
 struct Totals {
   double mass = 0.0;
-  double momentum_x = 0.0, momentum_y = 0.0;
+  double momentum[3] = {0.0, 0.0, 0.0};
   double momentum_magnitude = 0.0;  // sum m |v|: the scale against which momentum is judged
   double kinetic = 0.0;             // sum m v^2 / 2
   double internal = 0.0;            // sum m E
   double total_energy() const { return kinetic + internal; }
 };
 
-Totals compute_totals(const Particles& p);
+template <int D>
+Totals compute_totals(const Particles<D>& p);
 
 }  // namespace mpmshock

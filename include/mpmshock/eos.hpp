@@ -16,13 +16,10 @@ class MieGruneisen {
  public:
   MieGruneisen() = default;
   explicit MieGruneisen(const Material& mat)
-      : rho0_(mat.density), c0_(mat.sound_speed), s_(mat.hugoniot_slope), gamma0_(mat.gruneisen_gamma),
+      : rho0_(mat.density), s_(mat.hugoniot_slope), gamma0_(mat.gruneisen_gamma),
         K0_(mat.density * mat.sound_speed * mat.sound_speed) {}
 
   double rho0() const { return rho0_; }
-  double c0() const { return c0_; }
-  double slope() const { return s_; }
-  double gamma0() const { return gamma0_; }
 
   // Smallest J the Us-up Hugoniot reaches: P_H diverges at eta = 1/s.
   double limiting_compression() const { return 1.0 - 1.0 / s_; }
@@ -76,7 +73,7 @@ class MieGruneisen {
     return (J * J / rho0_) * (h.slope * (1.0 - 0.5 * gamma0_ * eta) - 0.5 * gamma0_ * h.pressure + gamma0_ * P);
   }
 
-  double rho0_ = 2700.0, c0_ = 5350.0, s_ = 1.34, gamma0_ = 1.96, K0_ = 2700.0 * 5350.0 * 5350.0;
+  double rho0_ = 2700.0, s_ = 1.34, gamma0_ = 1.96, K0_ = 2700.0 * 5350.0 * 5350.0;
 };
 
 }  // namespace mpmshock

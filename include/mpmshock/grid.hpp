@@ -1,40 +1,72 @@
-// The background grid: regular square cells of size h, periodic in x, free (unconstrained) in y.
+// The background grid: regular cubic (square) cells of size h; periodic in x (and z in 3D), free
+// (unconstrained) in y. Node (i, j, k) sits at (i h, y_min + j h, k h). Nodes are stored with y
+// slowest, so the nodes of a range of y rows are one contiguous range.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
+#include "mpmshock/tensor.hpp"
+
 namespace mpmshock {
 
+template <int D>
 struct GridGeometry {
   int nx = 0;          // node columns = cell columns (periodic: column nx is column 0)
   int ny = 0;          // node rows; cell rows are ny - 1
+  int nz = 1;          // node layers in z (periodic); 1 in 2D
   double h = 0.0;      // cell size
   double inv_h = 0.0;
   double y_min = 0.0;  // y of node row 0
   double lp = 0.0;     // uGIMP: half-width of a material point's domain, in cells
 
   double width() const { return nx * h; }
+  double depth() const { return nz * h; }
   double y_max() const { return y_min + (ny - 1) * h; }
-  std::size_t nodes() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny); }
-  std::size_t node(int column, int row) const {
-    return static_cast<std::size_t>(row) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(column);
+  // The period of a periodic axis (x, and z in 3D).
+  double period(int axis) const { return axis == 0 ? width() : depth(); }
+  std::size_t nodes_per_row() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(nz); }
+  std::size_t nodes() const { return nodes_per_row() * static_cast<std::size_t>(ny); }
+  // The first node of row j (the nodes of rows [a, b) are [row_start(a), row_start(b))).
+  std::size_t row_start(int row) const { return static_cast<std::size_t>(row) * nodes_per_row(); }
+};
+
+// A range of node rows [begin, end): the rows a step's points touch.
+struct RowRange {
+  int begin = 0, end = 0;
+};
+
+// Nodal fields, one array each, each with one meaning for the whole step:
+//   m        nodal mass m_i (P2G)
+//   mv       nodal momentum p_i (P2G); in MUSL then the re-mapped momentum sum N m_p v_p^{n+1}
+//   f        nodal force f_i (P2G)
+//   a        acceleration a_i = f_i / m_i
+//   v        velocity v_i^{n+1} = (p_i + dt f_i) / m_i
+//   v_remap  MUSL: the re-mapped velocity v~_i = sum N m_p v_p^{n+1} / m_i
+template <int D>
+struct Grid {
+  GridGeometry<D> geo;
+  std::vector<double> m;
+  std::vector<Vec<D>> mv, f, a, v, v_remap;
+
+  explicit Grid(const GridGeometry<D>& g = {});
+  // Zeroes mass, momentum and force on the given rows.
+  void reset(RowRange rows);
+  // Memory per node, for --check and the benchmarks.
+  static std::size_t bytes_per_node() {
+    std::size_t bytes = 0;
+    Grid<D>{}.for_each_field([&bytes](const auto& field) { bytes += sizeof(field[0]); });
+    return bytes;
+  }
+
+  // Every nodal field, for the operations that must not forget one.
+  template <class F>
+  void for_each_field(F&& f) {
+    f(m), f(mv), f(this->f), f(a), f(v), f(v_remap);
   }
 };
 
-// Nodal fields, one array each. After the momentum update (fx, fy) hold the accelerations f/m and
-// (vx, vy) the updated velocities; (px, py) are reused for the re-mapped momentum and velocity.
-struct Grid {
-  GridGeometry geo;
-  std::vector<double> m;       // nodal mass m_i
-  std::vector<double> px, py;  // nodal momentum p_i
-  std::vector<double> fx, fy;  // nodal force f_i, then acceleration f_i / m_i
-  std::vector<double> vx, vy;  // nodal velocity v_i^{n+1}
-
-  explicit Grid(const GridGeometry& g = {});
-  // Zeroes mass, momentum and force on node rows [row_begin, row_end).
-  void reset(int row_begin, int row_end);
-  static constexpr std::size_t bytes_per_node() { return 7 * sizeof(double); }
-};
+extern template struct Grid<2>;
+extern template struct Grid<3>;
 
 }  // namespace mpmshock

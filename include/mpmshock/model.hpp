@@ -1,31 +1,46 @@
-// The physics of a run, resolved once from the scene: constants and closed-form laws, no flags
-// that hot loops would test.
+// The physics of a run, resolved once from the scene: which law fills each slot of the point
+// update (equation of state, strength, artificial viscosity), the temperature model, and the
+// constants. Each slot is a variant of law types; the kernels are instantiated for the types
+// chosen (simulation.cpp), so hot loops test no flags and a new law is a new type in a variant.
 #pragma once
+
+#include <optional>
+#include <variant>
 
 #include "mpmshock/artificial_viscosity.hpp"
 #include "mpmshock/eos.hpp"
-#include "mpmshock/material.hpp"
 #include "mpmshock/scene.hpp"
+#include "mpmshock/shape.hpp"
+#include "mpmshock/temperature.hpp"
 #include "mpmshock/von_mises.hpp"
 
 namespace mpmshock {
 
+using StrengthLaw = std::variant<NoStrength, VonMises<false>, VonMises<true>>;
+using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
+using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape>;
+
+// The strength law a scene calls for, and what it stores per point.
+StrengthLaw strength_of(const Scene& s);
+inline bool has_stress(const StrengthLaw& law) { return !std::holds_alternative<NoStrength>(law); }
+inline bool has_back_stress(const StrengthLaw& law) { return std::holds_alternative<VonMises<true>>(law); }
+
 struct Model {
-  Material material;
+  ShapeChoice shape;
   MieGruneisen eos;
-  VonMises von_mises;
-  ArtificialViscosity viscosity;
+  StrengthLaw strength;
+  ViscosityLaw viscosity;
+  std::optional<HugoniotTemperature> thermal;  // the paper's temperature model (thermal = on)
+  UpdateScheme scheme;
   double cell_size;
+  double cfl;
   double speed_limit;  // |v| above this is a numerical runaway, not physics
 
-  explicit Model(const Scene& s)
-      : material(s.material), eos(s.material), von_mises(s.material),
-        viscosity{s.effects.artificial_viscosity ? s.av_linear : 0.0,
-                  s.effects.artificial_viscosity ? s.av_quadratic : 0.0},
-        cell_size(s.cell_size),
-        // No material point outruns several times the impact speed plus the sound speed; a
-        // point that does is a blow-up.
-        speed_limit(10.0 * (2.0 * s.velocity + s.material.sound_speed)) {}
+  explicit Model(const Scene& s);
+
+  // The shear modulus G the longitudinal sound speed sees; 0 without strength.
+  double shear_modulus() const;
+  bool has_strength() const { return has_stress(strength); }
 };
 
 }  // namespace mpmshock

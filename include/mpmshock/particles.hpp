@@ -1,35 +1,34 @@
-// Material points as a struct of arrays: one std::vector per physical field.
+// Material points as a struct of arrays: one std::vector per physical field, a small fixed-size
+// vector or matrix per point where the field is one (tensor.hpp).
+//
+//   x, v       position [m] (periodic coordinates kept in [0, period)) and velocity [m/s]
+//   m, V0      mass [kg; per m of depth in 2D] and reference volume [m3; m2 in 2D]
+//   F, L       deformation gradient (J = det F = V / V0) and the last step's velocity gradient
+//   E          specific internal energy [J/kg], 0 at the reference state
+//   P, q       equation-of-state pressure and artificial viscous pressure [Pa]
+//   s, alpha   deviatoric stress and back stress [Pa] (with strength; alpha only with kinematic
+//              hardening)
+//   eps_p      effective plastic strain (with strength)
+//   work       the work of the last step's nodal forces on the point [J/kg] (scratch of a step)
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "mpmshock/tensor.hpp"
+
 namespace mpmshock {
 
 enum class Body : std::uint8_t { flyer = 0, target = 1 };
 
+template <int D>
 struct Particles {
-  // Kinematics
-  std::vector<double> x, y;    // position [m]; x kept in [0, width)
-  std::vector<double> vx, vy;  // velocity [m/s]
-  // Per-point constants
-  std::vector<double> mass;     // m_p [kg per m of depth]
-  std::vector<double> volume0;  // reference volume V0_p [m2 per m of depth]
-  // Deformation gradient F (plane strain, F_zz = 1); J = det F = V / V0
-  std::vector<double> Fxx, Fxy, Fyx, Fyy;
-  // Time-centred velocity gradient L = grad v of the last step
-  std::vector<double> Lxx, Lxy, Lyx, Lyy;
-  // Thermodynamic state
-  std::vector<double> work;       // work of the last step's nodal forces on the point [J/kg] (scratch)
-  std::vector<double> energy;     // specific internal energy E [J/kg], 0 at the reference state
-  std::vector<double> pressure;   // EOS pressure P [Pa]
-  std::vector<double> viscosity;  // artificial viscous pressure q [Pa]
-  // Strength state; allocated only when plasticity is on. The yield radius is a function of
-  // plastic_strain (VonMises::yield_radius) and is not stored.
-  std::vector<double> sxx, syy, sxy;   // deviatoric stress s (s_zz = -(sxx + syy)) [Pa]
-  std::vector<double> plastic_strain;  // effective plastic strain eps_p
-  std::vector<double> axx, ayy, axy;   // back stress alpha [Pa]; only with kinematic hardening
-  // Identity
+  std::vector<Vec<D>> x, v;
+  std::vector<double> m, V0;
+  std::vector<Mat<D>> F, L;
+  std::vector<double> work, E, P, q;
+  std::vector<Deviator<D>> s, alpha;
+  std::vector<double> eps_p;
   std::vector<std::uint32_t> id;  // stable index, the order points were created in
   std::vector<Body> body;
 
@@ -37,13 +36,13 @@ struct Particles {
   bool has_strength() const { return strength_; }
   bool has_back_stress() const { return back_stress_; }
 
-  double J(std::size_t p) const { return Fxx[p] * Fyy[p] - Fxy[p] * Fyx[p]; }
-  double volume(std::size_t p) const { return volume0[p] * J(p); }
-  double density(std::size_t p) const { return mass[p] / volume(p); }
+  double J(std::size_t p) const { return det(F[p]); }
+  double volume(std::size_t p) const { return V0[p] * J(p); }
+  double density(std::size_t p) const { return m[p] / volume(p); }
 
-  // Appends a point in its reference state (stress free, E = 0) moving at (pvx, pvy).
-  void add(double px, double py, double pvx, double pvy, double m, double V0, Body b);
-  // Allocates (or drops) the strength fields, and the back stress for kinematic hardening.
+  // Appends a point in its reference state (stress free, E = 0) at `position` moving at `velocity`.
+  void add(const Vec<D>& position, const Vec<D>& velocity, double mass, double volume0, Body b);
+  // Allocates (or drops) the strength fields s and eps_p, and the back stress alpha.
   void enable_strength(bool on, bool back_stress);
   void reserve(std::size_t n);
   // Memory this layout holds per point, for --check and the benchmarks.
@@ -52,5 +51,8 @@ struct Particles {
  private:
   bool strength_ = false, back_stress_ = false;
 };
+
+extern template struct Particles<2>;
+extern template struct Particles<3>;
 
 }  // namespace mpmshock

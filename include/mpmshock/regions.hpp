@@ -21,23 +21,37 @@ struct RegionStats {
   std::string name;
   std::size_t count = 0;
   MeanStd density, pressure, temperature, velocity_x, velocity_y;
-  double rot2 = 0.0;          // (dv_y/dx - dv_x/dy)^2
-  double div2 = 0.0;          // (dv_x/dx + dv_y/dy)^2
+  double rot2 = 0.0;          // |curl v|^2; in 2D (dv_y/dx - dv_x/dy)^2
+  double div2 = 0.0;          // (div v)^2
   double strain_rate2 = 0.0;  // D : D with D = sym(grad v)
 };
 
 // The points of a region, in storage order. `y_top` is the highest target point.
-std::vector<std::size_t> points_in_region(const Particles& p, const RegionSpec& region, double y_top);
+template <int D>
+std::vector<std::size_t> points_in_region(const Particles<D>& p, const RegionSpec& region, double y_top);
 
 // Highest y of the target's points.
-double target_top(const Particles& p);
+template <int D>
+double target_top(const Particles<D>& p);
 
 // Statistics over the given points; temperature is NaN when `thermal` is null. Empty: NaN means.
-RegionStats region_stats(const Particles& p, const std::vector<std::size_t>& points, const std::string& name,
+template <int D>
+RegionStats region_stats(const Particles<D>& p, const std::vector<std::size_t>& points, const std::string& name,
                          const HugoniotTemperature* thermal);
 
-std::vector<RegionStats> sample_regions(const Particles& p, const std::vector<RegionSpec>& regions,
+template <int D>
+std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector<RegionSpec>& regions,
                                         const HugoniotTemperature* thermal);
+
+// Squared rotation |curl v|^2 of a velocity gradient (the paper's Rot^2).
+inline double rotation2(const Mat<2>& L) {
+  const double rot = L(1, 0) - L(0, 1);
+  return rot * rot;
+}
+inline double rotation2(const Mat<3>& L) {
+  const double a = L(2, 1) - L(1, 2), b = L(0, 2) - L(2, 0), c = L(1, 0) - L(0, 1);
+  return a * a + b * b + c * c;
+}
 
 // regions.csv: the header, and one row per region and sample time.
 extern const char* const kRegionsHeader;

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "mpmshock/scene.hpp"
-#include "mpmshock/setup.hpp"
 
 namespace mpmshock {
 
@@ -19,9 +18,6 @@ enum ExitCode : int {
   // Stopped by a signal (SIGINT, SIGTERM): 128 + the signal number, as shells report it, after the
   // current step finished and a final snapshot and the summary were written.
 };
-
-// SIGINT and SIGTERM ask a running run to stop after its current step; a second one kills at once.
-void install_stop_handlers();
 
 struct RunOptions {
   bool quiet = false;  // no progress line
@@ -58,8 +54,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options);
 RunResult restart_run(const std::string& snapshot, const std::vector<std::string>& overrides,
                       const RunOptions& options);
 
-// The --check report: bodies, grid, material points, voids, time step, steps, memory.
-std::string describe_setup(const Scene& scene, const InitialState& state);
+// The --check report: builds the initial state and describes it (bodies, grid, material points,
+// voids, time step, steps, memory).
+std::string check_report(const Scene& scene);
 
 // The summary block printed at the end of a run.
 std::string describe_result(const RunResult& r);

@@ -100,6 +100,12 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 Scene parse_scene(const std::string& text, const std::string& name,
                   const std::vector<std::string>& overrides = {});
 
+// The key a --set argument ("key=value") sets, trimmed as the parser trims it.
+std::string override_key(const std::string& arg);
+
+// A warning about numerical settings measured unstable (cfl > 0.5), or "" if none applies.
+std::string stability_warning(const Scene& scene);
+
 // Every key with its resolved value in SI, one "key = value" line each: the scene exactly as run.
 std::string resolved_scene(const Scene& scene);
 

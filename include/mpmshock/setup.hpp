@@ -17,29 +17,31 @@ struct BodySummary {
   std::size_t lattice_points = 0;   // points the solid body would have
   std::size_t material_points = 0;  // points left after cutting the voids
   std::vector<Void> voids;
-  double porosity = 1.0;            // lattice_points / material_points: the porosity of the points
+  double porosity() const { return porosity_of(lattice_points, material_points); }
 };
 
-struct InitialState {
-  GridGeometry grid;
-  Particles particles;
-  BodySummary target, flyer;
+// The porosity of both bodies together, from their material points.
+inline double porosity_of(const BodySummary& a, const BodySummary& b) {
+  return porosity_of(a.lattice_points + b.lattice_points, a.material_points + b.material_points);
+}
 
-  // Porosity of both bodies together, from the material points.
-  double porosity() const {
-    return static_cast<double>(target.lattice_points + flyer.lattice_points) /
-           static_cast<double>(target.material_points + flyer.material_points);
-  }
+template <int D>
+struct InitialState {
+  GridGeometry<D> grid;
+  Particles<D> particles;
+  BodySummary target, flyer;
 };
 
 // The grid of a scene: a periodic column covering both bodies plus grid_margin, with the impact
 // plane y = 0 on a grid line.
-GridGeometry build_grid_geometry(const Scene& scene);
+template <int D>
+GridGeometry<D> build_grid_geometry(const Scene& scene);
 
 // Builds the grid and the material points:
-// a regular lattice of particles_per_cell^2 points per cell, the flyer in [-flyer_height, 0] moving
-// up at +velocity, the target in [0, target_height] moving down, voids cut from both.
+// a regular lattice of particles_per_cell^D points per cell, the flyer in [-flyer_height, 0]
+// moving up at +velocity, the target in [0, target_height] moving down, voids cut from both.
 // Throws SceneError (naming the porosity key) if the voids cannot be placed.
-InitialState build_initial_state(const Scene& scene);
+template <int D>
+InitialState<D> build_initial_state(const Scene& scene);
 
 }  // namespace mpmshock

@@ -1,11 +1,12 @@
 // Shape functions behind one interface. A shape type gives, for a point, the tensor-product stencil
-// of the nodes it touches: their columns (wrapped for periodic x), the first row, and 1D weights
-// and derivatives in x and y. Transfers are templates on the shape type and the choice is made once
-// at setup, so a new shape function is a new type here; the physics never sees which one runs.
+// of the nodes it touches: their columns (and layers in 3D, wrapped for the periodic axes), the
+// first row, and 1D weights and derivatives on each axis. Transfers are templates on the shape
+// type and the choice is made once at setup, so a new shape function is a new type here; the
+// physics never sees which one runs.
 //
-//   bilinear  4-node cells, N_i = (1 + xi xi_i)(1 + eta eta_i)/4: the paper's choice. Its gradient
-//             jumps where a point crosses a grid line, which puts grid-crossing noise into shocked
-//             material (see docs/accuracy.md).
+//   bilinear  4-node cells, N_i = (1 + xi xi_i)(1 + eta eta_i)/4 (8-node in 3D): the paper's
+//             choice. Its gradient jumps where a point crosses a grid line, which puts grid-crossing
+//             noise into shocked material (README, "Method").
 //   gimp      uniform GIMP: each point is a square of half-width lp convolved with the hat; the
 //             gradient is continuous, 3 x 3 nodes.
 //   bspline2  quadratic B-spline, C1 on the grid, 3 x 3 nodes: the least noise.
@@ -18,37 +19,49 @@
 
 namespace mpmshock {
 
-template <int S>
+// The nodes a point touches and their weights, per axis: N_i = w[0][a] w[1][b] (w[2][c] in 3D),
+// grad N_i = (g[0][a] w[1][b], w[0][a] g[1][b]) (and so on in 3D). Axis 0 is x, 1 is y, 2 is z.
+template <int S, int D>
 struct Stencil {
   static constexpr int support = S;
-  int column[S];        // node columns, already wrapped into [0, nx)
-  int row0;             // first node row; rows row0 .. row0 + S - 1
-  double wx[S], wy[S];  // 1D weights; N_i = wx[a] wy[b]
-  double gx[S], gy[S];  // 1D derivatives [1/m]; grad N_i = (gx[a] wy[b], wx[a] gy[b])
+  int column[S];    // node columns (x), already wrapped into [0, nx)
+  int row0;         // first node row (y); rows row0 .. row0 + S - 1
+  int layer[S];     // node layers (z), wrapped into [0, nz); unused in 2D
+  double w[D][S];   // 1D weights
+  double g[D][S];   // 1D derivatives [1/m]
 };
 
 namespace detail {
 
-// Wraps a column index that is at most one period out of range (stencils reach one cell past the
+// Wraps a node index that is at most one period out of range (stencils reach one cell past the
 // seam); comparisons, not the integer division of %, which dominated the stencil's cost.
 inline int wrap(int i, int n) { return i < 0 ? i + n : (i >= n ? i - n : i); }
 
-// Fills a stencil from a 1D rule applied in x (periodic) and y. Rule::base(u) is the first node
-// touched at grid coordinate u; Rule::weights(d, lp, w, dw) the weights at d = u - base.
-template <class Rule, int S>
-[[gnu::always_inline]] inline Stencil<S> tensor_stencil(double x, double y, const GridGeometry& g) {
-  Stencil<S> st;
-  const double u = x * g.inv_h;
+// Fills a stencil from a 1D rule applied on each axis, periodic in x and z. Rule::base(u) is the
+// first node touched at grid coordinate u; Rule::weights(d, lp, w, dw) the weights at d = u - base.
+template <class Rule, int S, int D>
+[[gnu::always_inline]] inline Stencil<S, D> tensor_stencil(const Vec<D>& x, const GridGeometry<D>& g) {
+  Stencil<S, D> st;
+  const double u = x[0] * g.inv_h;
   const int i0 = Rule::base(u);
-  Rule::weights(u - i0, g.lp, st.wx, st.gx);
+  Rule::weights(u - i0, g.lp, st.w[0], st.g[0]);
   for (int a = 0; a < S; ++a) {
     st.column[a] = wrap(i0 + a, g.nx);
-    st.gx[a] *= g.inv_h;
+    st.g[0][a] *= g.inv_h;
   }
-  const double v = (y - g.y_min) * g.inv_h;
+  const double v = (x[1] - g.y_min) * g.inv_h;
   st.row0 = Rule::base(v);
-  Rule::weights(v - st.row0, g.lp, st.wy, st.gy);
-  for (int b = 0; b < S; ++b) st.gy[b] *= g.inv_h;
+  Rule::weights(v - st.row0, g.lp, st.w[1], st.g[1]);
+  for (int b = 0; b < S; ++b) st.g[1][b] *= g.inv_h;
+  if constexpr (D == 3) {
+    const double z = x[2] * g.inv_h;
+    const int k0 = Rule::base(z);
+    Rule::weights(z - k0, g.lp, st.w[2], st.g[2]);
+    for (int c = 0; c < S; ++c) {
+      st.layer[c] = wrap(k0 + c, g.nz);
+      st.g[2][c] *= g.inv_h;
+    }
+  }
   return st;
 }
 
@@ -102,33 +115,45 @@ struct QuadraticBSplineRule {
 
 }  // namespace detail
 
-template <class Rule, int S, const char* Name>
+template <class Rule, int S>
 struct TensorShape {
   static constexpr int support = S;
-  static constexpr const char* name = Name;
   // The first node row a point at height y touches; a point is on the grid while this row is in
   // [0, ny - support].
-  static int first_row(double y, const GridGeometry& g) { return Rule::base((y - g.y_min) * g.inv_h); }
-  [[gnu::always_inline]] static Stencil<S> at(double x, double y, const GridGeometry& g) {
-    return detail::tensor_stencil<Rule, S>(x, y, g);
+  template <int D>
+  static int first_row(double y, const GridGeometry<D>& g) {
+    return Rule::base((y - g.y_min) * g.inv_h);
+  }
+  template <int D>
+  [[gnu::always_inline]] static Stencil<S, D> at(const Vec<D>& x, const GridGeometry<D>& g) {
+    return detail::tensor_stencil<Rule, S, D>(x, g);
   }
 };
 
-inline constexpr char kBilinearName[] = "bilinear";
-inline constexpr char kGimpName[] = "gimp";
-inline constexpr char kBSpline2Name[] = "bspline2";
+using BilinearShape = TensorShape<detail::LinearRule, 2>;  // trilinear in 3D: the paper's 8-node cells
+using GimpShape = TensorShape<detail::GimpRule, 3>;
+using QuadraticBSplineShape = TensorShape<detail::QuadraticBSplineRule, 3>;
 
-using BilinearShape = TensorShape<detail::LinearRule, 2, kBilinearName>;
-using GimpShape = TensorShape<detail::GimpRule, 3, kGimpName>;
-using QuadraticBSplineShape = TensorShape<detail::QuadraticBSplineRule, 3, kBSpline2Name>;
-
-// Visits every node of a stencil: f(node index, N_i, dN_i/dx, dN_i/dy).
-template <int S, class F>
-inline void for_each_node(const Stencil<S>& st, const GridGeometry& g, F&& f) {
+// Visits every node of a stencil: f(node index, N_i, grad N_i), rows (y) outermost.
+template <int S, int D, class F>
+[[gnu::always_inline]] inline void for_each_node(const Stencil<S, D>& st, const GridGeometry<D>& g, F&& f) {
   for (int b = 0; b < S; ++b) {
-    const std::size_t row = static_cast<std::size_t>(st.row0 + b) * static_cast<std::size_t>(g.nx);
-    for (int a = 0; a < S; ++a) {
-      f(row + static_cast<std::size_t>(st.column[a]), st.wx[a] * st.wy[b], st.gx[a] * st.wy[b], st.wx[a] * st.gy[b]);
+    if constexpr (D == 2) {
+      const std::size_t row = static_cast<std::size_t>(st.row0 + b) * static_cast<std::size_t>(g.nx);
+      for (int a = 0; a < S; ++a)
+        f(row + static_cast<std::size_t>(st.column[a]), st.w[0][a] * st.w[1][b],
+          Vec<2>{{st.g[0][a] * st.w[1][b], st.w[0][a] * st.g[1][b]}});
+    } else {
+      for (int c = 0; c < S; ++c) {
+        const std::size_t start =
+            (static_cast<std::size_t>(st.row0 + b) * static_cast<std::size_t>(g.nz) + static_cast<std::size_t>(st.layer[c])) *
+            static_cast<std::size_t>(g.nx);
+        for (int a = 0; a < S; ++a) {
+          const double wxy = st.w[0][a] * st.w[1][b];
+          f(start + static_cast<std::size_t>(st.column[a]), wxy * st.w[2][c],
+            Vec<3>{{st.g[0][a] * st.w[1][b] * st.w[2][c], st.w[0][a] * st.g[1][b] * st.w[2][c], wxy * st.g[2][c]}});
+        }
+      }
     }
   }
 }

@@ -1,36 +1,31 @@
-// The explicit MPM integrator. step() is the algorithm, one phase per line; output, sampling
-// and bookkeeping live outside it (see run.hpp).
+// The explicit MPM integrator. step() is the algorithm, one phase per line; output, sampling and
+// bookkeeping live outside it (run.hpp).
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "mpmshock/constitutive.hpp"
 #include "mpmshock/grid.hpp"
 #include "mpmshock/model.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
-#include "mpmshock/setup.hpp"
+#include "mpmshock/step_effect.hpp"
 #include "mpmshock/strip_bins.hpp"
 
 namespace mpmshock {
 
-// What a step found. Numerical trouble is a status, not an exception: the caller decides to stop,
-// writes a final snapshot and reports.
-struct StepStatus {
-  enum class Code { ok, bad_state, left_grid };
-  Code code = Code::ok;
-  std::size_t point = 0;  // storage index of the offending material point
-  bool ok() const { return code == Code::ok; }
-};
-
-// Transfer kernels for one shape function and set of choices, picked at setup.
-struct TransferKernels {
-  bool (*bin)(StripBins&, const Particles&, const GridGeometry&);
-  void (*to_grid)(const Particles&, const StripBins&, Grid&);
-  void (*velocity_to_points)(Particles&, const StripBins&, Grid&, double dt);
-  std::size_t (*gradient_work_and_move)(Particles&, const Grid&, const std::vector<double>& ux,
-                                        const std::vector<double>& uy, double dt);
+// The transfer and point-update kernels for one dimension, shape function and set of laws,
+// instantiated for the model's choices at set-up (simulation.cpp).
+template <int D>
+struct Kernels {
+  bool (*bin)(StripBins&, const Particles<D>&, const GridGeometry<D>&);
+  void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&);
+  void (*velocity_to_points)(Particles<D>&, const StripBins&, Grid<D>&, double dt);
+  std::size_t (*gradient_work_and_move)(Particles<D>&, const Grid<D>&, const std::vector<Vec<D>>& u, double dt);
+  StressUpdateResult (*update_points)(Particles<D>&, const Model&, double dt);
 };
 
 // Where the integrator stands: all it needs, besides the points, to take the next step.
@@ -40,42 +35,48 @@ struct Clock {
   double max_signal = 0.0;  // fastest signal of the last step; sets the next time step
 };
 
+template <int D>
 class Simulation {
  public:
   // A new run from its initial points (time 0, first time step from their state).
-  Simulation(const Scene& scene, const GridGeometry& grid, Particles points);
+  Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points);
   // A run resumed from a snapshot's points and clock.
-  Simulation(const Scene& scene, const GridGeometry& grid, Particles points, const Clock& clock);
+  Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock);
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   // Advances by dt (which the caller takes from stable_time_step() or smaller).
   StepStatus step(double dt);
+  // The checks of the step effects that run at sample times (the 0 K check).
+  StepStatus check_at_sample();
 
   // cfl h / fastest signal of the last step.
-  double stable_time_step() const { return cfl_ * model_.cell_size / clock_.max_signal; }
+  double stable_time_step() const { return model_.cfl * model_.cell_size / clock_.max_signal; }
 
   double time() const { return clock_.time; }
   std::int64_t steps() const { return clock_.steps; }
   const Clock& clock() const { return clock_; }
-  const Particles& particles() const { return points_; }
-  const Grid& grid() const { return grid_; }
+  const Particles<D>& particles() const { return points_; }
+  Particles<D>& particles_for_testing() { return points_; }
+  const Grid<D>& grid() const { return grid_; }
   const Model& model() const { return model_; }
   // Node rows the last step used; the grid's fields outside them are stale.
-  int active_row_begin() const { return bins_.row_begin(); }
-  int active_row_end() const { return bins_.row_end(); }
+  RowRange active_rows() const { return bins_.rows(); }
 
-  // A readable account of a bad step: the point, its position and its state.
+  // A readable account of a failed step or check: the point, its position and its state.
   std::string describe(const StepStatus& status) const;
 
  private:
   Model model_;
-  Particles points_;
-  Grid grid_;
+  Particles<D> points_;
+  Grid<D> grid_;
   StripBins bins_;
-  TransferKernels kernels_;
-  StressUpdate update_stress_;
-  UpdateScheme scheme_;
-  double cfl_;
+  Kernels<D> kernels_;
+  std::vector<std::unique_ptr<StepEffect<D>>> effects_;
   Clock clock_;
 };
+
+extern template class Simulation<2>;
+extern template class Simulation<3>;
 
 }  // namespace mpmshock

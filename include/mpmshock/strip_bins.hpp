@@ -1,5 +1,5 @@
-// Race-free particle-to-grid scatter. Points are grouped by the first node row they touch into
-// strips of kRowsPerStrip cell rows. Two strips of the same colour (even or odd index) touch
+// Race-free particle-to-grid scatter. Points are grouped by the first node row (y) they touch into
+// strips of kRowsPerStrip cell rows (slabs in 3D). Two strips of the same colour (even or odd index) touch
 // disjoint node rows, so each colour is scattered in parallel with no atomics and no per-thread
 // copies of the grid. Every node then sums its contributions in a fixed order (even strip, then
 // odd strip, points in storage order), so results do not depend on the number of threads.
@@ -16,15 +16,16 @@ namespace mpmshock {
 class StripBins {
  public:
   static constexpr int kRowsPerStrip = 4;  // must be >= shape support - 1
+  // Memory per point (order_ and strip_of_), for the --check estimate.
+  static constexpr std::size_t kBytesPerPoint = sizeof(std::uint32_t) + sizeof(int);
 
   // Groups points by strip (a stable counting sort of their indices). Returns false if a point
   // lies outside the rows [0, ny - support], which the caller reports; the bins are then invalid.
-  template <class Shape>
-  bool build(const std::vector<double>& y, const GridGeometry& g);
+  template <class Shape, int D>
+  bool build(const std::vector<Vec<D>>& x, const GridGeometry<D>& g);
 
-  // Node rows the points touch: [row_begin, row_end).
-  int row_begin() const { return row_begin_; }
-  int row_end() const { return row_end_; }
+  // Node rows the points touch.
+  RowRange rows() const { return rows_; }
 
   // Calls f(point) for every point: strips of colour 0, then colour 1, each colour in parallel.
   template <class F>
@@ -38,16 +39,17 @@ class StripBins {
   }
 
  private:
-  int strips_ = 0, row_begin_ = 0, row_end_ = 0;
+  int strips_ = 0;
+  RowRange rows_;
   std::vector<std::uint32_t> start_;  // strips_ + 1 offsets into order_
   std::vector<std::uint32_t> order_;  // point indices grouped by strip
   std::vector<int> strip_of_;         // scratch: strip of each point
 };
 
-template <class Shape>
-bool StripBins::build(const std::vector<double>& y, const GridGeometry& g) {
+template <class Shape, int D>
+bool StripBins::build(const std::vector<Vec<D>>& x, const GridGeometry<D>& g) {
   static_assert(kRowsPerStrip >= Shape::support - 1, "strips too thin for this shape function");
-  const std::size_t n = y.size();
+  const std::size_t n = x.size();
   const int last_row = g.ny - Shape::support;  // highest first row that stays on the grid
   strips_ = (g.ny - 1) / kRowsPerStrip + 1;
   start_.assign(static_cast<std::size_t>(strips_) + 1, 0);
@@ -58,7 +60,7 @@ bool StripBins::build(const std::vector<double>& y, const GridGeometry& g) {
   bool inside = true;
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(min : lo) reduction(max : hi) reduction(&& : inside)
   for (std::size_t p = 0; p < n; ++p) {
-    const int row = Shape::first_row(y[p], g);
+    const int row = Shape::first_row(x[p][1], g);
     inside = inside && row >= 0 && row <= last_row;
     const int r = row < 0 ? 0 : (row > last_row ? last_row : row);
     lo = r < lo ? r : lo;
@@ -70,8 +72,7 @@ bool StripBins::build(const std::vector<double>& y, const GridGeometry& g) {
   for (int k = 0; k < strips_; ++k) start_[k + 1] += start_[k];
   std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
   for (std::size_t p = 0; p < n; ++p) order_[next[static_cast<std::size_t>(strip_of_[p])]++] = static_cast<std::uint32_t>(p);
-  row_begin_ = n ? lo : 0;
-  row_end_ = n ? hi + Shape::support : 0;
+  rows_ = n ? RowRange{lo, hi + Shape::support} : RowRange{};
   return true;
 }
 

@@ -1,4 +1,4 @@
-// Particle <-> grid transfers, templates on the shape function (see shape.hpp).
+// Particle <-> grid transfers, templates on the dimension and the shape function (shape.hpp).
 // P2G: m_i = sum N m_p, p_i = sum N m_p v_p, f_i = -sum V_p sigma_p grad N (the paper's f_int).
 // G2P: FLIP velocity v_p += dt sum N a_i; position x_p += dt sum N v_i^{n+1};
 // velocity gradient L_p = sum u_i (x) grad N_i, with u_i the re-mapped velocity (MUSL) or
@@ -19,59 +19,76 @@ namespace mpmshock {
 
 constexpr std::size_t kNoPoint = std::numeric_limits<std::size_t>::max();
 
-// P2G of mass, momentum and internal force. Stress sigma = s - (P + q) I; without strength s = 0.
-template <class Shape, bool Strength>
-void particles_to_grid(const Particles& p, const StripBins& bins, Grid& g) {
-  const GridGeometry& geo = g.geo;
-  bins.scatter([&](std::size_t q) {
-    const auto st = Shape::at(p.x[q], p.y[q], geo);
-    const double m = p.mass[q], V = p.volume(q);
-    const double mvx = m * p.vx[q], mvy = m * p.vy[q];
-    const double pq = p.pressure[q] + p.viscosity[q];
-    double sxx = -pq, syy = -pq, sxy = 0.0;
-    if constexpr (Strength) {
-      sxx += p.sxx[q];
-      syy += p.syy[q];
-      sxy = p.sxy[q];
+// The Cauchy stress of a point, sigma = s - (P + q) I; without strength s = 0.
+template <int D, bool Strength>
+inline Mat<D> cauchy_stress(const Particles<D>& pts, std::size_t p) {
+  const double pq = pts.P[p] + pts.q[p];
+  Mat<D> sigma{};
+  for (int d = 0; d < D; ++d) sigma(d, d) = -pq;
+  if constexpr (Strength) {
+    const Deviator<D>& s = pts.s[p];
+    sigma(0, 0) += s.xx;
+    sigma(1, 1) += s.yy;
+    sigma(0, 1) = sigma(1, 0) = s.xy;
+    if constexpr (D == 3) {
+      sigma(2, 2) += s.zz();
+      sigma(1, 2) = sigma(2, 1) = s.yz();
+      sigma(0, 2) = sigma(2, 0) = s.zx();
     }
-    for_each_node(st, geo, [&](std::size_t i, double N, double dNx, double dNy) {
+  }
+  return sigma;
+}
+
+// P2G of mass, momentum and internal force.
+template <int D, class Shape, bool Strength>
+void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g) {
+  const GridGeometry<D>& geo = g.geo;
+  bins.scatter([&](std::size_t p) {
+    const auto st = Shape::at(pts.x[p], geo);
+    const double m = pts.m[p], V = pts.volume(p);
+    Vec<D> mv;
+    for (int d = 0; d < D; ++d) mv[d] = m * pts.v[p][d];
+    const Mat<D> sigma = cauchy_stress<D, Strength>(pts, p);
+    for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
       g.m[i] += N * m;
-      g.px[i] += N * mvx;
-      g.py[i] += N * mvy;
-      g.fx[i] -= V * (sxx * dNx + sxy * dNy);
-      g.fy[i] -= V * (sxy * dNx + syy * dNy);
+      for (int d = 0; d < D; ++d) g.mv[i][d] += N * mv[d];
+      for (int d = 0; d < D; ++d) {
+        double t = sigma(d, 0) * dN[0];
+        for (int j = 1; j < D; ++j) t += sigma(d, j) * dN[j];
+        g.f[i][d] -= V * t;
+      }
     });
   });
 }
 
-// Explicit momentum update on the nodes of rows [row_begin, row_end): a_i = f_i / m_i (kept in f),
-// v_i^{n+1} = (p_i + dt f_i) / m_i. Periodic in x by construction, free in y: no constraints.
-// p_i is consumed, leaving zeros for the MUSL re-map.
-void update_grid_momentum(Grid& g, int row_begin, int row_end, double dt);
+// Explicit momentum update on the nodes of the given rows: a_i = f_i / m_i,
+// v_i^{n+1} = (p_i + dt f_i) / m_i. Periodic in x (and z) by construction, free in y: no
+// constraints. p_i is zeroed for the MUSL re-map.
+template <int D>
+void update_grid_momentum(Grid<D>& g, RowRange rows, double dt);
 
-// MUSL: the nodal velocity re-mapped from the updated point velocities, v~_i = p_i / m_i, in (px, py).
-void remap_grid_velocity(Grid& g, int row_begin, int row_end);
+// MUSL: the nodal velocity re-mapped from the updated point velocities, v~_i = sum N m_p v_p / m_i.
+template <int D>
+void remap_grid_velocity(Grid<D>& g, RowRange rows);
 
 // G2P of the FLIP velocity increment. With Remap (MUSL), also scatters m_p v_p^{n+1} back to the
 // nodes at the same stencil.
-template <class Shape, bool Remap>
-void grid_to_particles_velocity(Particles& p, const StripBins& bins, Grid& g, double dt) {
-  const GridGeometry& geo = g.geo;
-  auto kernel = [&](std::size_t q) {
-    const auto st = Shape::at(p.x[q], p.y[q], geo);
-    double ax = 0.0, ay = 0.0;
-    for_each_node(st, geo, [&](std::size_t i, double N, double, double) {
-      ax += N * g.fx[i];
-      ay += N * g.fy[i];
+template <int D, class Shape, bool Remap>
+void grid_to_particles_velocity(Particles<D>& pts, const StripBins& bins, Grid<D>& g, double dt) {
+  const GridGeometry<D>& geo = g.geo;
+  auto kernel = [&](std::size_t p) {
+    const auto st = Shape::at(pts.x[p], geo);
+    Vec<D> acc{};
+    for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
+      for (int d = 0; d < D; ++d) acc[d] += N * g.a[i][d];
     });
-    const double vx = p.vx[q] + dt * ax, vy = p.vy[q] + dt * ay;
-    p.vx[q] = vx;
-    p.vy[q] = vy;
+    Vec<D>& v = pts.v[p];
+    for (int d = 0; d < D; ++d) v[d] = v[d] + dt * acc[d];
     if constexpr (Remap) {
-      const double mvx = p.mass[q] * vx, mvy = p.mass[q] * vy;
-      for_each_node(st, geo, [&](std::size_t i, double N, double, double) {
-        g.px[i] += N * mvx;
-        g.py[i] += N * mvy;
+      Vec<D> mv;
+      for (int d = 0; d < D; ++d) mv[d] = pts.m[p] * v[d];
+      for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
+        for (int d = 0; d < D; ++d) g.mv[i][d] += N * mv[d];
       });
     }
   };
@@ -79,15 +96,15 @@ void grid_to_particles_velocity(Particles& p, const StripBins& bins, Grid& g, do
     bins.scatter(kernel);
   } else {
 #pragma omp parallel for schedule(dynamic, kChunk)
-    for (std::size_t q = 0; q < p.size(); ++q) kernel(q);
+    for (std::size_t p = 0; p < pts.size(); ++p) kernel(p);
   }
 }
 
 // The velocity gradient, the work of the step's forces, and the position update, per point.
 //
-// L_p = sum_i u_i (x) grad N_i from the nodal velocity u (ux, uy): the re-mapped v~^{n+1} in MUSL,
-// v^{n+1} in USL. It drives the kinematics (F, the stress rate) as in standard MUSL, a symplectic
-// step that is stable up to cfl 1.
+// L_p = sum_i u_i (x) grad N_i from the nodal velocity u: the re-mapped v~^{n+1} in MUSL, v^{n+1}
+// in USL. It drives the kinematics (F, the stress rate) as in standard MUSL, a symplectic step
+// that is stable up to cfl 1.
 //
 // work_p = dt (V_p / m_p) sigma_p : (L_p[v^n] + L_p[v~^{n+1}]) / 2 [J/kg], with v^n = v^{n+1} - dt a
 // the nodal velocity the step started from. For FLIP points the kinetic energy changes in a step
@@ -97,49 +114,49 @@ void grid_to_particles_velocity(Particles& p, const StripBins& bins, Grid& g, do
 // too would be exact but unstable at any time step (its amplification factor is
 // sqrt(1 + (omega dt)^2 / 2)); hence the two gradients.
 //
-// Positions move with v^{n+1}; x wraps into [0, width). Returns the lowest index of a point that
-// left the grid, or kNoPoint.
-template <class Shape, bool Strength>
-std::size_t velocity_gradient_work_and_move(Particles& p, const Grid& g, const std::vector<double>& ux,
-                                            const std::vector<double>& uy, double dt) {
-  const GridGeometry& geo = g.geo;
-  const double width = geo.width();
+// Positions move with v^{n+1}; periodic coordinates wrap into [0, period). Returns the lowest
+// index of a point that left the grid, or kNoPoint.
+template <int D, class Shape, bool Strength>
+std::size_t velocity_gradient_work_and_move(Particles<D>& pts, const Grid<D>& g, const std::vector<Vec<D>>& u,
+                                            double dt) {
+  const GridGeometry<D>& geo = g.geo;
   const int last_row = geo.ny - Shape::support;
   std::size_t first_out = kNoPoint;
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(min : first_out)
-  for (std::size_t q = 0; q < p.size(); ++q) {
-    const auto st = Shape::at(p.x[q], p.y[q], geo);
-    double Lxx = 0.0, Lxy = 0.0, Lyx = 0.0, Lyy = 0.0;  // L[u]
-    double Axx = 0.0, Axy = 0.0, Ayx = 0.0, Ayy = 0.0;  // L[v^n + u], twice the averaged gradient
-    double vx = 0.0, vy = 0.0;
-    for_each_node(st, geo, [&](std::size_t i, double N, double dNx, double dNy) {
-      Lxx += ux[i] * dNx;
-      Lxy += ux[i] * dNy;
-      Lyx += uy[i] * dNx;
-      Lyy += uy[i] * dNy;
-      const double sx = g.vx[i] - dt * g.fx[i] + ux[i], sy = g.vy[i] - dt * g.fy[i] + uy[i];
-      Axx += sx * dNx;
-      Axy += sx * dNy;
-      Ayx += sy * dNx;
-      Ayy += sy * dNy;
-      vx += N * g.vx[i];
-      vy += N * g.vy[i];
+  for (std::size_t p = 0; p < pts.size(); ++p) {
+    const auto st = Shape::at(pts.x[p], geo);
+    Mat<D> L{};  // L[u]
+    Mat<D> A{};  // L[v^n + u], twice the averaged gradient
+    Vec<D> vel{};
+    for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
+      for (int d = 0; d < D; ++d) {
+        const double ud = u[i][d], sd = g.v[i][d] - dt * g.a[i][d] + ud;
+        for (int j = 0; j < D; ++j) {
+          L(d, j) += ud * dN[j];
+          A(d, j) += sd * dN[j];
+        }
+        vel[d] += N * g.v[i][d];
+      }
     });
-    p.Lxx[q] = Lxx;
-    p.Lxy[q] = Lxy;
-    p.Lyx[q] = Lyx;
-    p.Lyy[q] = Lyy;
+    pts.L[p] = L;
     // sigma : L_avg with sigma = s - (P + q) I; the spin does no work.
-    double power = -(p.pressure[q] + p.viscosity[q]) * (Axx + Ayy);
-    if constexpr (Strength) power += p.sxx[q] * Axx + p.syy[q] * Ayy + p.sxy[q] * (Axy + Ayx);
-    p.work[q] = 0.5 * dt * p.volume(q) / p.mass[q] * power;
+    double power = -(pts.P[p] + pts.q[p]) * trace(A);
+    if constexpr (Strength) power += contract(pts.s[p], A);
+    pts.work[p] = 0.5 * dt * pts.volume(p) / pts.m[p] * power;
 
-    double x = p.x[q] + dt * vx;  // a point moves far less than a period per step
-    x = x < 0.0 ? x + width : (x >= width ? x - width : x);
-    p.x[q] = x < width ? x : 0.0;  // x + width can round up to width
-    p.y[q] += dt * vy;
-    const int row = Shape::first_row(p.y[q], geo);
-    if (!(row >= 0 && row <= last_row)) first_out = q < first_out ? q : first_out;
+    Vec<D>& x = pts.x[p];
+    for (int d = 0; d < D; ++d) {
+      if (d == 1) {
+        x[1] += dt * vel[1];
+        continue;
+      }
+      const double period = geo.period(d);
+      double c = x[d] + dt * vel[d];  // a point moves far less than a period per step
+      c = c < 0.0 ? c + period : (c >= period ? c - period : c);
+      x[d] = c < period ? c : 0.0;  // c + period can round up to period
+    }
+    const int row = Shape::first_row(x[1], geo);
+    if (!(row >= 0 && row <= last_row)) first_out = p < first_out ? p : first_out;
   }
   return first_out;
 }

@@ -36,16 +36,19 @@ struct VoidRequest {
   bool overlap = false;
 };
 
+// The porosity of a body cut from a lattice: delta = lattice points / remaining material points
+// (the volume the body spans over the volume of its material).
+inline double porosity_of(std::size_t lattice_points, std::size_t material_points) {
+  return static_cast<double>(lattice_points) / static_cast<double>(material_points);
+}
+
 struct VoidLayout {
   std::vector<Void> voids;
   std::vector<std::uint8_t> removed;  // per lattice point: 1 if inside a void
   std::size_t removed_count = 0;
   std::size_t lattice_points = 0;
 
-  // Porosity computed from the material points: lattice points / remaining points.
-  double porosity() const {
-    return static_cast<double>(lattice_points) / static_cast<double>(lattice_points - removed_count);
-  }
+  double porosity() const { return porosity_of(lattice_points, lattice_points - removed_count); }
 };
 
 // Thrown when the voids cannot be placed (they do not fit, or the porosity cannot be reached

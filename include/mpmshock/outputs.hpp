@@ -1,0 +1,42 @@
+// The output files of a run directory that grow as the run goes: regions.csv and
+// conservation.csv (one row per sample), the snapshots and their XDMF index.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mpmshock/run_directory.hpp"
+#include "mpmshock/simulation.hpp"
+#include "mpmshock/snapshot.hpp"
+#include "mpmshock/xdmf.hpp"
+
+namespace mpmshock {
+
+// conservation.csv's header for a D-dimensional run.
+std::string conservation_header(int dimension);
+
+template <int D>
+class Outputs {
+ public:
+  // Opens regions.csv and conservation.csv in `dir`: new (with headers), or appended to (restart).
+  Outputs(const Scene& scene, const fs::path& dir, bool append);
+
+  // Snapshots already in the directory that the XDMF index must keep listing (restart).
+  void keep_listing(std::vector<XdmfSnapshot> earlier) { xdmf_ = std::move(earlier); }
+
+  // One row per region in regions.csv and one in conservation.csv, at the simulation's time.
+  void sample(const Simulation<D>& sim, double dt);
+  // snapshot_NNNNN.h5 (NNNNN = run.schedule.snapshot_index) and the XDMF index.
+  void snapshot(const Simulation<D>& sim, const RunState& run);
+
+ private:
+  const Scene& scene_;
+  fs::path dir_;
+  File regions_, conservation_;
+  std::vector<XdmfSnapshot> xdmf_;
+};
+
+extern template class Outputs<2>;
+extern template class Outputs<3>;
+
+}  // namespace mpmshock

@@ -1,0 +1,53 @@
+// The files of a run directory: their names, which of them are ours, creating and clearing the
+// directory, and the small text files (scene.txt, voids.csv) and CSV edits a restart needs.
+// Failures of the disk throw std::runtime_error (exit code 4); refusals the user fixes in the
+// scene throw SceneError naming the output_dir key (exit code 2).
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "mpmshock/scene.hpp"
+#include "mpmshock/setup.hpp"
+
+namespace mpmshock {
+
+namespace fs = std::filesystem;
+
+inline constexpr const char* kXdmfName = "snapshots.xdmf";
+
+// snapshot_NNNNN.h5
+std::string snapshot_name(int index);
+// The number of a snapshot file name, or -1.
+int snapshot_number(const fs::path& p);
+// The files a run writes; --force removes exactly these, never anything else in the directory.
+bool is_run_output(const fs::path& p);
+
+// Creates output_dir, or, if it holds an earlier run's outputs, removes them (with force) or
+// refuses; then checks that the directory can be written.
+void prepare_output_dir(const Scene& scene, bool force);
+
+struct FileCloser {
+  void operator()(std::FILE* f) const {
+    if (f) std::fclose(f);
+  }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+File open_output(const fs::path& path, const char* mode = "w");
+void flush_or_throw(std::FILE* f, const std::string& what);
+void write_text(const fs::path& path, const std::string& text);
+// Writes PATH.tmp and renames it over PATH.
+void write_text_atomically(const fs::path& path, const std::string& text);
+// voids.csv: body, x, y, radius per void.
+void write_voids(const fs::path& path, const BodySummary& flyer, const BodySummary& target);
+
+// The rows of a CSV (the header is not a row) whose time, the first column, is after t.
+std::size_t count_rows_after(const fs::path& path, double t);
+// Keeps the header and the rows that are not after t; rewrites the file atomically. Returns the
+// number of rows dropped.
+std::size_t truncate_rows_after(const fs::path& path, double t);
+
+}  // namespace mpmshock

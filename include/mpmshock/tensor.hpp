@@ -1,0 +1,198 @@
+// Small fixed-size vectors and tensors of a D-dimensional run (D = 2: plane strain in x, y;
+// D = 3). One code path serves both dimensions: the physics is written with these types and loops
+// over D; only the few operations whose 2D form is the plane-strain reduction of the 3D one
+// (deviators, spin, determinant) are spelled out per dimension.
+//
+// Sums are written first-term-first (s = a0 b0; s += a1 b1; ...), the same expression a written
+// out 2D formula compiles to, so results are bit for bit those of the hand-written 2D code.
+#pragma once
+
+#include <cmath>
+
+namespace mpmshock {
+
+template <int D>
+struct Vec {
+  static_assert(D == 2 || D == 3, "mpmshock runs in 2 or 3 dimensions");
+  double c[D];
+  double& operator[](int i) { return c[i]; }
+  double operator[](int i) const { return c[i]; }
+};
+
+// |v|
+template <int D>
+inline double speed(const Vec<D>& v) {
+  if constexpr (D == 2) return std::hypot(v[0], v[1]);
+  else return std::hypot(v[0], v[1], v[2]);
+}
+
+// a . b
+template <int D>
+inline double dot(const Vec<D>& a, const Vec<D>& b) {
+  double s = a[0] * b[0];
+  for (int d = 1; d < D; ++d) s += a[d] * b[d];
+  return s;
+}
+
+// A D x D matrix, row i, column j: M(i, j). Deformation gradient F[i][j] = dx_i/dX_j, velocity
+// gradient L[i][j] = dv_i/dx_j.
+template <int D>
+struct Mat {
+  double c[D][D];
+  double& operator()(int i, int j) { return c[i][j]; }
+  double operator()(int i, int j) const { return c[i][j]; }
+  static Mat identity() {
+    Mat m{};
+    for (int i = 0; i < D; ++i) m.c[i][i] = 1.0;
+    return m;
+  }
+};
+
+// tr M
+template <int D>
+inline double trace(const Mat<D>& m) {
+  double t = m(0, 0);
+  for (int i = 1; i < D; ++i) t += m(i, i);
+  return t;
+}
+
+// det M; for F, J = V / V0 (plane strain: F_zz = 1).
+inline double det(const Mat<2>& m) { return m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0); }
+inline double det(const Mat<3>& m) {
+  return m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0)) +
+         m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+}
+
+// A B
+template <int D>
+inline Mat<D> product(const Mat<D>& a, const Mat<D>& b) {
+  Mat<D> r;
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) {
+      double s = a(i, 0) * b(0, j);
+      for (int k = 1; k < D; ++k) s += a(i, k) * b(k, j);
+      r(i, j) = s;
+    }
+  return r;
+}
+
+// A trace-free symmetric 3x3 tensor (deviatoric stress s, back stress alpha). The zz component is
+// not stored but is -(xx + yy): exact in exact arithmetic, and the same rule in both dimensions.
+// In plane strain (D = 2) yz = zx = 0 and three numbers carry it; in 3D five.
+template <int D>
+struct Deviator;
+
+template <>
+struct Deviator<2> {
+  double xx = 0.0, yy = 0.0, xy = 0.0;
+  double zz() const { return -(xx + yy); }
+  double yz() const { return 0.0; }
+  double zx() const { return 0.0; }
+  // ||a||^2 = a:a over the full 3x3 tensor.
+  double norm2() const { return xx * xx + yy * yy + zz() * zz() + 2.0 * xy * xy; }
+};
+
+template <>
+struct Deviator<3> {
+  double xx = 0.0, yy = 0.0, xy = 0.0, yz_ = 0.0, zx_ = 0.0;
+  double zz() const { return -(xx + yy); }
+  double yz() const { return yz_; }
+  double zx() const { return zx_; }
+  double norm2() const {
+    return xx * xx + yy * yy + zz() * zz() + 2.0 * xy * xy + 2.0 * yz_ * yz_ + 2.0 * zx_ * zx_;
+  }
+};
+
+inline Deviator<2> operator+(const Deviator<2>& a, const Deviator<2>& b) { return {a.xx + b.xx, a.yy + b.yy, a.xy + b.xy}; }
+inline Deviator<2> operator-(const Deviator<2>& a, const Deviator<2>& b) { return {a.xx - b.xx, a.yy - b.yy, a.xy - b.xy}; }
+inline Deviator<2> operator*(double k, const Deviator<2>& a) { return {k * a.xx, k * a.yy, k * a.xy}; }
+inline Deviator<3> operator+(const Deviator<3>& a, const Deviator<3>& b) {
+  return {a.xx + b.xx, a.yy + b.yy, a.xy + b.xy, a.yz_ + b.yz_, a.zx_ + b.zx_};
+}
+inline Deviator<3> operator-(const Deviator<3>& a, const Deviator<3>& b) {
+  return {a.xx - b.xx, a.yy - b.yy, a.xy - b.xy, a.yz_ - b.yz_, a.zx_ - b.zx_};
+}
+inline Deviator<3> operator*(double k, const Deviator<3>& a) {
+  return {k * a.xx, k * a.yy, k * a.xy, k * a.yz_, k * a.zx_};
+}
+
+// Equivalent (von Mises) stress sqrt(3/2) ||a||.
+template <int D>
+inline double equivalent_stress(const Deviator<D>& a) {
+  return std::sqrt(1.5 * a.norm2());
+}
+
+// a : A for a deviator a and a D x D matrix A (the stress power s : L, the spin drops out).
+inline double contract(const Deviator<2>& a, const Mat<2>& m) {
+  return a.xx * m(0, 0) + a.yy * m(1, 1) + a.xy * (m(0, 1) + m(1, 0));
+}
+inline double contract(const Deviator<3>& a, const Mat<3>& m) {
+  return a.xx * m(0, 0) + a.yy * m(1, 1) + a.zz() * m(2, 2) + a.xy * (m(0, 1) + m(1, 0)) +
+         a.yz_ * (m(1, 2) + m(2, 1)) + a.zx_ * (m(2, 0) + m(0, 2));
+}
+
+// The velocity gradient split into what the stress update needs: the rate of deformation
+// D = sym(L) and the spin W = skew(L). Plane strain: D_zz = 0 and W has one component W_xy.
+template <int D>
+struct StrainRate;
+
+template <>
+struct StrainRate<2> {
+  double xx, yy, xy;  // D
+  double spin;        // W_xy = (L_xy - L_yx)/2
+  double trace() const { return xx + yy; }
+  double norm2() const { return xx * xx + yy * yy + 2.0 * xy * xy; }  // D : D
+  Deviator<2> deviator() const {
+    const double third = trace() / 3.0;
+    return {xx - third, yy - third, xy};  // zz = -tr D/3, consistent with Deviator::zz()
+  }
+};
+
+template <>
+struct StrainRate<3> {
+  double xx, yy, zz, xy, yz, zx;  // D
+  double w_xy, w_yz, w_zx;        // W_ij = (L_ij - L_ji)/2
+  double trace() const { return xx + yy + zz; }
+  double norm2() const { return xx * xx + yy * yy + zz * zz + 2.0 * xy * xy + 2.0 * yz * yz + 2.0 * zx * zx; }
+  Deviator<3> deviator() const {
+    const double third = trace() / 3.0;
+    return {xx - third, yy - third, xy, yz, zx};
+  }
+};
+
+inline StrainRate<2> strain_rate(const Mat<2>& L) {
+  return {L(0, 0), L(1, 1), 0.5 * (L(0, 1) + L(1, 0)), 0.5 * (L(0, 1) - L(1, 0))};
+}
+inline StrainRate<3> strain_rate(const Mat<3>& L) {
+  return {L(0, 0),
+          L(1, 1),
+          L(2, 2),
+          0.5 * (L(0, 1) + L(1, 0)),
+          0.5 * (L(1, 2) + L(2, 1)),
+          0.5 * (L(2, 0) + L(0, 2)),
+          0.5 * (L(0, 1) - L(1, 0)),
+          0.5 * (L(1, 2) - L(2, 1)),
+          0.5 * (L(2, 0) - L(0, 2))};
+}
+
+// W a - a W for a deviator a and the spin W of D: the rotation part of the Jaumann rate,
+// a_dot = a_jaumann + (W a - a W). Stays symmetric and trace-free.
+inline Deviator<2> spin_rate(const Deviator<2>& a, const StrainRate<2>& D) {
+  const double w = D.spin;
+  return {2.0 * w * a.xy, -2.0 * w * a.xy, w * (a.yy - a.xx)};
+}
+inline Deviator<3> spin_rate(const Deviator<3>& a, const StrainRate<3>& D) {
+  // W = [[0, wxy, -wzx], [-wxy, 0, wyz], [wzx, -wyz, 0]] (W_xz = -W_zx); a symmetric.
+  const double W[3][3] = {{0.0, D.w_xy, -D.w_zx}, {-D.w_xy, 0.0, D.w_yz}, {D.w_zx, -D.w_yz, 0.0}};
+  const double A[3][3] = {{a.xx, a.xy, a.zx()}, {a.xy, a.yy, a.yz()}, {a.zx(), a.yz(), a.zz()}};
+  double R[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double s = 0.0;
+      for (int k = 0; k < 3; ++k) s += W[i][k] * A[k][j] - A[i][k] * W[k][j];
+      R[i][j] = s;
+    }
+  return {R[0][0], R[1][1], R[0][1], R[1][2], R[2][0]};
+}
+
+}  // namespace mpmshock

@@ -1,0 +1,65 @@
+// The --check report: what a scene builds, what it will cost, before anything runs.
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "mpmshock/run.hpp"
+#include "mpmshock/setup.hpp"
+#include "mpmshock/simulation.hpp"
+#include "mpmshock/strip_bins.hpp"
+
+namespace mpmshock {
+namespace {
+
+std::string bytes_text(double b) {
+  char buf[64];
+  if (b < 1024.0 * 1024.0) std::snprintf(buf, sizeof buf, "%.0f KiB", b / 1024.0);
+  else if (b < 1024.0 * 1024.0 * 1024.0) std::snprintf(buf, sizeof buf, "%.1f MiB", b / (1024.0 * 1024.0));
+  else std::snprintf(buf, sizeof buf, "%.2f GiB", b / (1024.0 * 1024.0 * 1024.0));
+  return buf;
+}
+
+template <int D>
+std::string describe_setup(const Scene& s, const InitialState<D>& st) {
+  std::ostringstream out;
+  const GridGeometry<D>& g = st.grid;
+  auto body = [&](const BodySummary& b) {
+    out << "  " << b.name << ": y " << b.y_bottom * 1e3 << " .. " << b.y_top * 1e3 << " mm, " << b.material_points
+        << " material points, " << b.voids.size() << " voids, porosity " << b.porosity() << "\n";
+  };
+  const double porosity = porosity_of(st.target, st.flyer);
+  out << "scene " << s.source << "\n";
+  out << "bodies (width " << s.width * 1e3 << " mm, periodic in x, impact speed +-" << s.velocity << " m/s)\n";
+  body(st.target);
+  body(st.flyer);
+  out << "  porosity requested " << s.porosity << ", achieved " << porosity << " (relative error "
+      << std::abs(porosity - s.porosity) / s.porosity << ")\n";
+  out << "grid: " << g.nx << " x " << g.ny - 1 << " cells of " << g.h * 1e6 << " um, y " << g.y_min * 1e3 << " .. "
+      << g.y_max() * 1e3 << " mm, " << g.nodes() << " nodes\n";
+  out << "material points: " << st.particles.size() << " (" << s.particles_per_cell << " x " << s.particles_per_cell
+      << " per cell)\n";
+  const Model model(s);
+  const double signal = initial_signal_speed(st.particles, model);
+  const double dt0 = s.cfl * s.cell_size / signal;
+  // Shocked material carries sound faster than c0; dt shrinks as the run goes, so this is a floor.
+  const auto steps = static_cast<long long>(std::ceil(s.end_time / dt0));
+  out << "time step: " << dt0 * 1e9 << " ns at start (cfl " << s.cfl << ", fastest signal " << signal
+      << " m/s); at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
+  if (const std::string w = stability_warning(s); !w.empty()) out << "warning: " << w << "\n";
+  out << "effects: plasticity " << (s.effects.plasticity ? "on" : "off") << ", thermal "
+      << (s.effects.thermal ? "on" : "off") << ", artificial viscosity "
+      << (s.effects.artificial_viscosity ? "on" : "off") << ", voids " << (s.porosity > 1.0 ? "on" : "off")
+      << "; update scheme " << (s.update_scheme == UpdateScheme::musl ? "MUSL" : "USL") << "\n";
+  const std::size_t per_point = st.particles.bytes_per_point() + StripBins::kBytesPerPoint;
+  const double bytes = static_cast<double>(st.particles.size()) * static_cast<double>(per_point) +
+                       static_cast<double>(g.nodes()) * static_cast<double>(Grid<D>::bytes_per_node());
+  out << "memory: about " << bytes_text(bytes) << " (" << per_point << " bytes per point, "
+      << Grid<D>::bytes_per_node() << " per node)\n";
+  return out.str();
+}
+
+}  // namespace
+
+std::string check_report(const Scene& scene) { return describe_setup(scene, build_initial_state<2>(scene)); }
+
+}  // namespace mpmshock

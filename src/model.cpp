@@ -1,0 +1,47 @@
+#include "mpmshock/model.hpp"
+
+namespace mpmshock {
+
+namespace {
+
+ShapeChoice shape_of(const Scene& s) {
+  switch (s.shape_function) {
+    case ShapeFunction::bilinear: return BilinearShape{};
+    case ShapeFunction::gimp: return GimpShape{};
+    case ShapeFunction::bspline2: break;
+  }
+  return QuadraticBSplineShape{};
+}
+
+ViscosityLaw viscosity_of(const Scene& s) {
+  if (!s.effects.artificial_viscosity) return NoViscosity{};
+  return ArtificialViscosity{s.av_linear, s.av_quadratic};
+}
+
+}  // namespace
+
+StrengthLaw strength_of(const Scene& s) {
+  if (!s.effects.plasticity) return NoStrength{};
+  if (s.material.hardening_beta == 1.0) return VonMises<false>(s.material);
+  return VonMises<true>(s.material);
+}
+
+Model::Model(const Scene& s)
+    : shape(shape_of(s)), eos(s.material), strength(strength_of(s)), viscosity(viscosity_of(s)),
+      scheme(s.update_scheme), cell_size(s.cell_size), cfl(s.cfl),
+      // No material point outruns several times the impact speed plus the sound speed; a point
+      // that does is a blow-up.
+      speed_limit(10.0 * (2.0 * s.velocity + s.material.sound_speed)) {
+  if (s.effects.thermal) thermal.emplace(s.material);
+}
+
+double Model::shear_modulus() const {
+  return std::visit(
+      [](const auto& law) {
+        if constexpr (std::decay_t<decltype(law)>::has_stress) return law.shear_modulus;
+        else return 0.0;
+      },
+      strength);
+}
+
+}  // namespace mpmshock

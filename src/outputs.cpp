@@ -1,0 +1,55 @@
+#include "mpmshock/outputs.hpp"
+
+#include "mpmshock/diagnostics.hpp"
+#include "mpmshock/regions.hpp"
+
+namespace mpmshock {
+
+std::string conservation_header(int dimension) {
+  return std::string("time,step,dt,mass,momentum_x,momentum_y,") + (dimension == 3 ? "momentum_z," : "") +
+         "kinetic_energy,internal_energy,total_energy";
+}
+
+template <int D>
+Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append)
+    : scene_(scene), dir_(dir), regions_(open_output(dir / "regions.csv", append ? "a" : "w")),
+      conservation_(open_output(dir / "conservation.csv", append ? "a" : "w")) {
+  if (!append) {
+    std::fprintf(regions_.get(), "%s\n", kRegionsHeader);
+    std::fprintf(conservation_.get(), "%s\n", conservation_header(D).c_str());
+  }
+}
+
+template <int D>
+void Outputs<D>::sample(const Simulation<D>& sim, double dt) {
+  const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
+  write_region_rows(regions_.get(), sim.time(), sample_regions(sim.particles(), scene_.regions, thermal));
+  const Totals t = compute_totals(sim.particles());
+  std::fprintf(conservation_.get(), "%.10g,%lld,%.6g,%.12g,", sim.time(), static_cast<long long>(sim.steps()), dt,
+               t.mass);
+  for (int d = 0; d < D; ++d) std::fprintf(conservation_.get(), "%.12g,", t.momentum[d]);
+  std::fprintf(conservation_.get(), "%.12g,%.12g,%.12g\n", t.kinetic, t.internal, t.total_energy());
+  flush_or_throw(regions_.get(), "regions.csv");
+  flush_or_throw(conservation_.get(), "conservation.csv");
+}
+
+template <int D>
+void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
+  const std::string name = snapshot_name(run.schedule.snapshot_index);
+  SnapshotOptions<D> options;
+  options.compression = static_cast<int>(scene_.snapshot_compression);
+  if (scene_.snapshot_grid) {
+    options.grid = &sim.grid();
+    options.grid_rows = sim.active_rows();
+  }
+  const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
+  write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);
+  const GridGeometry<D>& g = sim.grid().geo;
+  xdmf_.push_back({name, sim.time(), sim.particles().size(), scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h});
+  write_xdmf((dir_ / kXdmfName).string(), xdmf_);
+}
+
+template class Outputs<2>;
+template class Outputs<3>;
+
+}  // namespace mpmshock

@@ -1,0 +1,145 @@
+#include "mpmshock/time_loop.hpp"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <sstream>
+
+#include "mpmshock/diagnostics.hpp"
+#include "mpmshock/progress.hpp"
+#include "mpmshock/signals.hpp"
+#include "mpmshock/thread_tuner.hpp"
+
+namespace mpmshock {
+namespace {
+
+using WallClock = std::chrono::steady_clock;
+
+// Counts, errors and rates of a finished run.
+template <int D>
+void finish_result(RunResult& result, const Simulation<D>& sim, const Totals& start, std::int64_t start_steps) {
+  const Totals end = compute_totals(sim.particles());
+  result.steps = sim.steps();
+  result.end_time = sim.time();
+  result.point_steps_per_second =
+      result.wall_seconds > 0
+          ? static_cast<double>(sim.particles().size()) * static_cast<double>(sim.steps() - start_steps) /
+                result.wall_seconds
+          : 0.0;
+  result.mass_error = std::abs(end.mass - start.mass) / start.mass;
+  Vec<D> momentum_change;
+  for (int d = 0; d < D; ++d) momentum_change[d] = end.momentum[d] - start.momentum[d];
+  result.momentum_error = speed(momentum_change) / start.momentum_magnitude;
+  result.energy_error = std::abs(end.total_energy() - start.total_energy()) / start.total_energy();
+}
+
+}  // namespace
+
+template <int D>
+RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs<D>& out, const fs::path& dir,
+                  const RunOptions& options) {
+  RunResult result;
+  result.output_dir = dir.string();
+  result.start_time = sim.time();
+  result.porosity = porosity_of(run.target, run.flyer);
+  result.voids = run.target.voids.size() + run.flyer.voids.size();
+  result.points = sim.particles().size();
+  const std::int64_t start_steps = sim.steps();
+  OutputSchedule& sch = run.schedule;
+  auto take_snapshot = [&] {
+    run.clock = sim.clock();
+    out.snapshot(sim, run);
+    ++sch.snapshot_index;
+  };
+
+  const double end_time = landing_end_time(scene);
+  const int all_threads = omp_get_max_threads();
+  ThreadTuner threads(options.fixed_threads ? 1 : all_threads);
+  Progress progress(!options.quiet, sim.time(), end_time);
+  const auto wall_start = WallClock::now();
+  StepStatus status;
+  bool failed_at_sample = false;  // the failing check ran after the sample was written
+  while (sim.time() < end_time * (1.0 - 1e-12)) {
+    const double dt = landing_step(sim.stable_time_step(), next_event_time(sch, scene, end_time) - sim.time());
+    if (!options.fixed_threads) omp_set_num_threads(threads.threads());
+    const auto step_start = WallClock::now();
+    status = sim.step(dt);
+    threads.record(std::chrono::duration<double>(WallClock::now() - step_start).count());
+    sch.last_dt = dt;
+    if (!status.ok()) break;
+    if (stop_signal() != 0) break;  // after a whole step, so the state is consistent
+    const double tol = 1e-9 * dt;
+    if (sim.time() >= event_time(sch.next_sample, scene.sample_interval) - tol) {
+      out.sample(sim, dt);
+      sch.next_sample = next_event_after(sim.time(), scene.sample_interval, tol);
+      status = sim.check_at_sample();
+      failed_at_sample = !status.ok();
+      if (failed_at_sample) break;
+    }
+    if (sim.time() >= event_time(sch.next_snapshot, scene.snapshot_interval) - tol) {
+      sch.next_snapshot = next_event_after(sim.time(), scene.snapshot_interval, tol);
+      take_snapshot();
+    }
+    progress.update(sim.time(), sim.steps(), dt);
+  }
+  progress.finish();
+  result.threads = all_threads;
+  result.steps_with_fewer_threads = threads.steps_below_max();
+  result.wall_seconds = std::chrono::duration<double>(WallClock::now() - wall_start).count();
+
+  if (!status.ok()) {
+    result.exit_code = kExitNumerical;
+    result.failure = sim.describe(status);
+    if (!failed_at_sample) out.sample(sim, sch.last_dt);
+    take_snapshot();  // the state that went wrong, for inspection
+  } else if (stop_signal() != 0 && sim.time() < end_time * (1.0 - 1e-12)) {
+    const int sig = stop_signal();
+    result.exit_code = 128 + sig;
+    const std::string name = snapshot_name(sch.snapshot_index);
+    out.sample(sim, sch.last_dt);
+    take_snapshot();  // a state to restart from
+    std::ostringstream why;
+    why << "stopped by " << (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal") << " at t = "
+        << sim.time() * 1e9 << " ns, step " << sim.steps() << "; continue with: mpmshock --restart "
+        << (dir / name).string();
+    result.failure = why.str();
+  } else {
+    // The end time is an output time whatever the intervals.
+    const double tol = 1e-9 * sch.last_dt;
+    if (event_time(sch.next_sample - 1, scene.sample_interval) < sim.time() - tol) out.sample(sim, sch.last_dt);
+    if (scene.snapshot_interval == 0.0 || event_time(sch.next_snapshot - 1, scene.snapshot_interval) < sim.time() - tol)
+      take_snapshot();
+  }
+
+  finish_result(result, sim, run.initial, start_steps);
+  omp_set_num_threads(all_threads);
+  write_summary_json(dir / "summary.json", result);
+  return result;
+}
+
+void write_summary_json(const fs::path& path, const RunResult& r) {
+  const fs::path tmp = path.string() + ".tmp";
+  File f = open_output(tmp);
+  std::fprintf(f.get(),
+               "{\n  \"exit_code\": %d,\n  \"failure\": \"%s\",\n  \"steps\": %lld,\n  \"start_time\": %.10g,\n"
+               "  \"end_time\": %.10g,\n  \"wall_seconds\": %.6g,\n  \"material_points\": %zu,\n"
+               "  \"point_steps_per_second\": %.6g,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n"
+               "  \"mass_error\": %.6g,\n  \"momentum_error\": %.6g,\n  \"energy_error\": %.6g,\n"
+               "  \"porosity\": %.10g,\n  \"voids\": %zu\n}\n",
+               r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps), r.start_time,
+               r.end_time, r.wall_seconds, r.points, r.point_steps_per_second, r.threads,
+               static_cast<long long>(r.steps_with_fewer_threads), r.mass_error, r.momentum_error, r.energy_error,
+               r.porosity, r.voids);
+  flush_or_throw(f.get(), path.string());
+  f.reset();
+  fs::rename(tmp, path);
+}
+
+template RunResult advance<2>(const Scene&, Simulation<2>&, RunState&, Outputs<2>&, const fs::path&,
+                              const RunOptions&);
+template RunResult advance<3>(const Scene&, Simulation<3>&, RunState&, Outputs<3>&, const fs::path&,
+                              const RunOptions&);
+
+}  // namespace mpmshock
