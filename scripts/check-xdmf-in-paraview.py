@@ -49,7 +49,7 @@ for time, name in zip(times, files):
                                           p["velocity_gradient"][:].reshape(-1, 4)),
                 }
                 for field in ("density", "pressure", "temperature", "internal_energy", "plastic_strain",
-                              "artificial_viscosity", "mass", "volume", "id", "body"):
+                              "viscous_pressure", "mass", "volume", "id", "body"):
                     expect[field] = (np.asarray(w.PointData[field]), p[field][:])
                 if np.abs(np.asarray(w.PointData["velocity"])[:, 2]).max() != 0:
                     problems.append(f"{name}: velocity z is not zero")

@@ -57,7 +57,7 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
   for (std::size_t q = 0; q < n; ++q) scalar[q] = p.density(q);
   doubles("density", scalar.data(), {N}, "kg/m3", "density of the material point", chosen);
   doubles("pressure", p.P.data(), {N}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)", chosen);
-  doubles("artificial_viscosity", p.q.data(), {N}, "Pa", "artificial viscous pressure q", chosen);
+  doubles("viscous_pressure", p.q.data(), {N}, "Pa", "artificial viscous pressure q", chosen);
   for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->temperature(p.J(q), p.E[q]) : std::nan("");
   doubles("temperature", scalar.data(), {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
   doubles("internal_energy", p.E.data(), {N}, "J/kg", "specific internal energy, 0 at the reference state", chosen);
@@ -181,7 +181,7 @@ void write_snapshot(const std::string& path, const Particles<D>& p, const Hugoni
       h5::write_int_attribute(f, "dimension", D);
       h5::write_string_attribute(f, "scene", run.scene_text);
       h5::write_string_attribute(f, "mpmshock_version", kVersion);
-      h5::write_int_attribute(f, "format_version", 1);
+      h5::write_int_attribute(f, "format_version", 2);
       write_particles(f, p, thermal, options.compression);
       write_restart(f, p, run);
       if (options.grid) write_grid(f, options);
@@ -269,7 +269,10 @@ Restart<D> read_snapshot(const std::string& path) {
     unflatten(h5::read_doubles(f, "/particles/velocity_gradient", n, {d, d}), p.L);
     p.E = h5::read_doubles(f, "/particles/internal_energy", n, {});
     p.P = h5::read_doubles(f, "/particles/pressure", n, {});
-    p.q = h5::read_doubles(f, "/particles/artificial_viscosity", n, {});
+    // Format 1 named the viscous pressure after the effect.
+    p.q = h5::read_doubles(f, h5::has_link(f, "/particles/viscous_pressure") ? "/particles/viscous_pressure"
+                                                                               : "/particles/artificial_viscosity",
+                           n, {});
     p.work.assign(n, 0.0);
     p.enable_strength(strength, back);
     if (strength) {

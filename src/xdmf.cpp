@@ -81,7 +81,7 @@ std::string xdmf_document(const std::vector<XdmfSnapshot>& snapshots) {
     data_item(x, dims(s.points, "2"), s.file + ":/particles/position", "          ");
     x << "        </Geometry>\n";
     for (const char* name : {"density", "pressure", "temperature", "internal_energy", "plastic_strain",
-                             "artificial_viscosity", "mass", "volume"})
+                             "viscous_pressure", "mass", "volume"})
       attribute(x, s, name, "Scalar", "");
     point_velocity(x, s);
     attribute(x, s, "stress", "Tensor", "3 3");

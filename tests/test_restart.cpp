@@ -40,7 +40,7 @@ void check_same_snapshot(const fs::path& a, const fs::path& b) {
       {"position", {2}},  {"velocity", {2}},       {"mass", {}},   {"volume", {}},
       {"density", {}},    {"pressure", {}},        {"temperature", {}}, {"internal_energy", {}},
       {"stress", {3, 3}}, {"plastic_strain", {}},  {"deformation_gradient", {2, 2}},
-      {"velocity_gradient", {2, 2}}, {"artificial_viscosity", {}}};
+      {"velocity_gradient", {2, 2}}, {"viscous_pressure", {}}};
   for (const auto& [name, tail] : fields) {
     const std::string path = std::string("/particles/") + name;
     const std::vector<double> va = h5::read_doubles(fa.get(), path.c_str(), n, tail);

@@ -31,7 +31,7 @@ QUANTITIES = {
     "strain_rate2": Quantity(r"$\langle \dot\varepsilon^2 \rangle$", "1/ns^2", 1e-18, r"ns$^{-2}$"),
     "plastic_strain": Quantity(r"$\varepsilon_p$", "", 1.0),
     "internal_energy": Quantity("$E$", "kJ/g", 1e-6),
-    "artificial_viscosity": Quantity("$q$", "GPa", 1e-9),
+    "viscous_pressure": Quantity("$q$", "GPa", 1e-9),
 }
 
 TIME = Quantity("$t$", "ns", 1e9)
