@@ -17,7 +17,7 @@ bool bin_points(StripBins& bins, const Particles<D>& pts, const GridGeometry<D>&
 
 // The kernels for one choice of shape function and laws: every combination the variants of
 // model.hpp allow is instantiated by std::visit, none is listed by hand.
-template <int D, class Shape, class Strength, class Viscosity>
+template <int D, class Shape, class Eos, class Strength, class Viscosity>
 Kernels<D> kernels_for(UpdateScheme scheme) {
   constexpr bool stress = Strength::has_stress;
   Kernels<D> k{};
@@ -26,18 +26,18 @@ Kernels<D> kernels_for(UpdateScheme scheme) {
   k.velocity_to_points = scheme == UpdateScheme::musl ? grid_to_particles_velocity<D, Shape, true>
                                                       : grid_to_particles_velocity<D, Shape, false>;
   k.gradient_work_and_move = velocity_gradient_work_and_move<D, Shape, stress>;
-  k.update_points = update_all_points<D, Strength, Viscosity>;
+  k.update_points = update_all_points<D, Eos, Strength, Viscosity>;
   return k;
 }
 
 template <int D>
 Kernels<D> kernels_for(const Model& m) {
   return std::visit(
-      [&](auto shape, const auto& strength, const auto& viscosity) {
-        return kernels_for<D, decltype(shape), std::decay_t<decltype(strength)>, std::decay_t<decltype(viscosity)>>(
-            m.scheme);
+      [&](auto shape, const auto& eos, const auto& strength, const auto& viscosity) {
+        return kernels_for<D, decltype(shape), std::decay_t<decltype(eos)>, std::decay_t<decltype(strength)>,
+                           std::decay_t<decltype(viscosity)>>(m.scheme);
       },
-      m.shape, m.strength, m.viscosity);
+      m.shape, m.eos, m.strength, m.viscosity);
 }
 
 // The step effects a model calls for, in the order their slots run.
@@ -125,7 +125,7 @@ std::string Simulation<D>::describe(const StepStatus& status) const {
     case StepStatus::Code::bad_state:
       out << "material point " << pts.id[p] << " reached a non-physical state";
       if (!(J > 0.0)) out << " (J = det F <= 0: the point turned inside out)";
-      else if (!(J > model_.eos.limiting_compression())) out << " (compressed past the Hugoniot's limit J = 1 - 1/s)";
+      else if (!(J > model_.limiting_compression())) out << " (compressed past the Hugoniot's limit J = 1 - 1/s)";
       else if (!std::isfinite(pts.P[p]) || !std::isfinite(pts.E[p])) out << " (non-finite pressure or energy)";
       else out << " (runaway speed above " << model_.speed_limit << " m/s)";
       break;

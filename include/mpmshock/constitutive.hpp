@@ -29,9 +29,9 @@ struct PointState {
 // One point, one step. Returns the point's signal speed (for the next time step), or a negative
 // number if the new state is not physical (J <= the EOS limit, or a non-finite result). Inlined
 // into the loop over points: as a call it costs 40 % more instructions per point.
-template <int D, class Strength, class Viscosity>
-[[gnu::always_inline]] inline double update_point(PointState<D>& st, const MieGruneisen& eos, const Strength& strength, const Viscosity& viscosity,
-                    double h, double dt) {
+template <int D, class Eos, class Strength, class Viscosity>
+[[gnu::always_inline]] inline double update_point(PointState<D>& st, const Eos& eos, const Strength& strength,
+                                                  const Viscosity& viscosity, double h, double dt) {
   const StrainRate<D> rate = strain_rate(st.L);
 
   // Energy: the exact work of the step's nodal forces on the point (compression, plastic and
@@ -50,7 +50,7 @@ template <int D, class Strength, class Viscosity>
   if constexpr (Strength::has_stress) strength.update(st.s, st.alpha, st.eps_p, rate, dt);
 
   // Pressure from the new volume and energy; artificial viscosity from this step's compression rate.
-  const MieGruneisen::State eos_state = eos.state(J, st.E);
+  const auto eos_state = eos.state(J, st.E);
   st.P = eos_state.pressure;
   if (!std::isfinite(st.E) || !std::isfinite(st.P)) return -1.0;
   const double c2_bulk = std::max(eos_state.sound_speed_squared, 0.0);
@@ -74,8 +74,9 @@ struct StressUpdateResult {
 };
 
 // The update of every point, for one choice of laws.
-template <int D, class Strength, class Viscosity>
+template <int D, class Eos, class Strength, class Viscosity>
 StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, double dt) {
+  const Eos& eos = std::get<Eos>(model.eos);
   const Strength& strength = std::get<Strength>(model.strength);
   const Viscosity& viscosity = std::get<Viscosity>(model.viscosity);
   double max_signal = 0.0;
@@ -89,7 +90,7 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
       st.eps_p = pts.eps_p[p];
     }
     if constexpr (Strength::has_back_stress) st.alpha = pts.alpha[p];
-    const double signal = update_point<D>(st, model.eos, strength, viscosity, model.cell_size, dt);
+    const double signal = update_point<D>(st, eos, strength, viscosity, model.cell_size, dt);
     pts.F[p] = st.F;
     pts.E[p] = st.E;
     pts.P[p] = st.P;

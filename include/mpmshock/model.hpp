@@ -16,6 +16,7 @@
 
 namespace mpmshock {
 
+using EquationOfState = std::variant<MieGruneisen>;
 using StrengthLaw = std::variant<NoStrength, VonMises<false>, VonMises<true>>;
 using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
 using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape>;
@@ -27,7 +28,7 @@ inline bool has_back_stress(const StrengthLaw& law) { return std::holds_alternat
 
 struct Model {
   ShapeChoice shape;
-  MieGruneisen eos;
+  EquationOfState eos;
   StrengthLaw strength;
   ViscosityLaw viscosity;
   std::optional<HugoniotTemperature> thermal;  // the paper's temperature model (thermal = on)
@@ -38,6 +39,8 @@ struct Model {
 
   explicit Model(const Scene& s);
 
+  // The smallest J = V/V0 the equation of state admits.
+  double limiting_compression() const;
   // The shear modulus G the longitudinal sound speed sees; 0 without strength.
   double shear_modulus() const;
   bool has_strength() const { return has_stress(strength); }

@@ -1,9 +1,9 @@
 """Post-processing of mpmshock run directories: a reader (SI units throughout) and the paper's plots.
 
-From a notebook:
+Install it where pip is available (`pip install -e scripts`, which also installs the
+`mpmshock-plot` command), or, with Debian's /usr/bin/python3 and no pip, start Python in scripts/
+or put scripts/ on PYTHONPATH. From a notebook:
 
-    import sys
-    sys.path.insert(0, "/path/to/mpmshock/scripts")
     from mpmshock_post import reader
     run = reader.Run("output/paper_base")
 

@@ -1,66 +1,38 @@
-#!/usr/bin/python3
 """The post-processing tools on a tiny run: every mpmshock-plot kind makes a real image, bad input
 exits non-zero with a message, and the reader gives back what the simulator wrote, down to the
 region averages recomputed from the last snapshot.
 
-usage: /usr/bin/python3 tests/python/test_post.py --mpmshock BUILD/src/mpmshock --scene tests/data/tiny_porous.scene
+    python3 -m pytest tests/python [--mpmshock BUILD/src/mpmshock]
 """
 
-import argparse
 import contextlib
 import csv
 import io
-import os
 import shutil
 import subprocess
 import sys
-import tempfile
-import time
-import traceback
-from pathlib import Path
 
 import h5py
 import numpy as np
 
-SCRIPTS = Path(__file__).resolve().parents[2] / "scripts"
+from conftest import SCRIPTS
+from mpmshock_post import PostError, reader
+from mpmshock_post.cli import build_parser
+from mpmshock_post.labels import run_labels
+from mpmshock_post.stats import moments
+from mpmshock_post.units import parse_time
+
 PLOT = SCRIPTS / "mpmshock-plot"
-PYTHON = "/usr/bin/python3"  # the interpreter with numpy, h5py and matplotlib
-sys.path.insert(0, str(SCRIPTS))
-
-from mpmshock_post import PostError, reader  # noqa: E402
-from mpmshock_post.cli import build_parser  # noqa: E402
-from mpmshock_post.labels import run_labels  # noqa: E402
-from mpmshock_post.stats import moments  # noqa: E402
-from mpmshock_post.units import parse_time  # noqa: E402
-
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 KINDS = ("timeseries", "std", "dissipation", "field", "hist", "compare")
 
 
-class Failure(Exception):
-    pass
-
-
 def check(condition, message):
-    if not condition:
-        raise Failure(message)
-
-
-def simulate(binary, scene, out_dir, *overrides):
-    command = [binary, scene, "--set", f"output_dir={out_dir}", "--quiet", "--force"]
-    for override in overrides:
-        command += ["--set", override]
-    try:
-        done = subprocess.run(command, capture_output=True, text=True,
-                              env=dict(os.environ, OMP_WAIT_POLICY="PASSIVE"))
-    except OSError as e:
-        sys.exit(f"FAILED: cannot run {binary}: {e}")
-    if done.returncode != 0:
-        sys.exit(f"FAILED: {' '.join(command)} exited {done.returncode}:\n{done.stdout}{done.stderr}")
+    assert condition, message
 
 
 def plot(*args, interpreter=True):
-    command = ([PYTHON] if interpreter else []) + [str(PLOT)] + [str(a) for a in args]
+    command = ([sys.executable] if interpreter else []) + [str(PLOT)] + [str(a) for a in args]
     return subprocess.run(command, capture_output=True, text=True)
 
 
@@ -260,41 +232,3 @@ def test_units_and_moments(ctx):
     rng = np.random.default_rng(1)
     _, _, skewness, kurtosis = moments(rng.exponential(size=200_000))  # skewness 2, excess kurtosis 6
     check(abs(skewness - 2) < 0.1 and abs(kurtosis - 6) < 0.6, f"exponential: S={skewness}, K={kurtosis}")
-
-
-TESTS = [test_help, test_series_kinds, test_default_output_name, test_field, test_hist, test_compare,
-         test_pdf_and_svg, test_errors, test_regions_equal_csv, test_region_stats_match_csv,
-         test_summary_consistent_with_snapshots, test_reader_ignores_what_it_does_not_know,
-         test_units_and_moments]
-
-
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--mpmshock", required=True, help="the mpmshock binary")
-    parser.add_argument("--scene", required=True, help="a scene that runs in about a second")
-    args = parser.parse_args()
-    with tempfile.TemporaryDirectory(prefix="mpmshock_post_test_") as tmp:
-        ctx = argparse.Namespace(tmp=Path(tmp), run=Path(tmp) / "run", run_fast=Path(tmp) / "run_fast")
-        simulate(args.mpmshock, args.scene, ctx.run)
-        simulate(args.mpmshock, args.scene, ctx.run_fast, "velocity=1500")
-        failed = []
-        for test in TESTS:
-            start = time.monotonic()
-            try:
-                test(ctx)
-                print(f"ok     {test.__name__} ({time.monotonic() - start:.1f} s)")
-            except (Failure, PostError) as e:
-                failed.append(test.__name__)
-                print(f"FAILED {test.__name__}: {e}")
-            except Exception:  # a bug in the tools or the test: show where, run the other tests
-                failed.append(test.__name__)
-                print(f"FAILED {test.__name__} with an unexpected exception:\n{traceback.format_exc()}")
-    if failed:
-        print(f"{len(failed)} of {len(TESTS)} tests failed: {', '.join(failed)}")
-        return 1
-    print(f"all {len(TESTS)} tests passed")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

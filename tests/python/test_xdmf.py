@@ -1,14 +1,13 @@
-#!/usr/bin/python3
-"""The XDMF index of a run, continued by a restart: well-formed XML, one time step per snapshot with the snapshot's time,
-and every HDF5 dataset it names exists with the shape it states (hyperslabs within bounds).
+"""The XDMF index of a run, continued by a restart: well-formed XML, one time step per snapshot
+with the snapshot's time, and every HDF5 dataset it names exists with the shape it states
+(hyperslabs within bounds).
 
-usage: test_xdmf.py MPMSHOCK_BINARY SCENE
+    python3 -m pytest tests/python/test_xdmf.py [--mpmshock BUILD/src/mpmshock]
 """
 import math
 import os
 import subprocess
 import sys
-import tempfile
 import xml.etree.ElementTree as ET
 
 import h5py
@@ -75,10 +74,11 @@ def check_data_item(item, run_dir, context):
     return shape
 
 
-def main():
-    binary, scene = sys.argv[1], sys.argv[2]
-    with tempfile.TemporaryDirectory() as tmp:
-        run_dir = os.path.join(tmp, "run")
+def test_xdmf_of_a_restarted_run(mpmshock, tiny_scene, tmp_path):
+    binary, scene = mpmshock, tiny_scene
+    failures.clear()
+    if True:
+        run_dir = str(tmp_path / "run")
         subprocess.run([binary, scene, "--quiet", "--set", "output_dir=" + run_dir, "--set", "snapshot_grid=on",
                         "--set", "end_time=40ns", "--set", "snapshot_interval=20ns"], check=True,
                        stdout=subprocess.DEVNULL)
@@ -121,11 +121,4 @@ def main():
                     components = {"Scalar": (), "Vector": (3,), "Tensor": (3, 3), "Matrix": (4,)}[kind]
                     if tuple(shape[len(shape) - len(components):]) != components:
                         fail(f"{file_name} {attribute.get('Name')}: {kind} with shape {shape}")
-    if failures:
-        print(f"{len(failures)} check(s) failed")
-        sys.exit(1)
-    print("all checks passed")
-
-
-if __name__ == "__main__":
-    main()
+    assert not failures, f"{len(failures)} check(s) failed:\n" + "\n".join(failures)
