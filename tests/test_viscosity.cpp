@@ -16,8 +16,10 @@ int main() {
     CHECK(av.pressure(rho, c, h, trD) > 0.0);
     CHECK_REL(av.signal(c, h, trD), 0.2 * c + 2.0 * h * -trD, 1e-14);
   }
-  // Switched off by zero coefficients (how the model applies artificial_viscosity = off).
+  // Zero coefficients give no viscous pressure either; artificial_viscosity = off is its own law
+  // type, which the point update compiles out.
   const ArtificialViscosity off{0.0, 0.0};
   CHECK(off.pressure(rho, c, h, -1e9) == 0.0);
+  static_assert(!NoViscosity::active && ArtificialViscosity::active, "the off law must compile out");
   return check::result();
 }
