@@ -45,7 +45,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   const auto steps = static_cast<long long>(std::ceil(s.end_time / dt0));
   out << "time step: " << dt0 * 1e9 << " ns at start (cfl " << s.cfl << ", fastest signal " << signal
       << " m/s); at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
-  if (const std::string w = stability_warning(s); !w.empty()) out << "warning: " << w << "\n";
+  for (const std::string& w : scene_warnings(s)) out << "warning: " << w << "\n";
   out << "effects: plasticity " << (s.effects.plasticity ? "on" : "off") << ", thermal "
       << (s.effects.thermal ? "on" : "off") << ", artificial viscosity "
       << (s.effects.artificial_viscosity ? "on" : "off") << ", voids " << (s.porosity > 1.0 ? "on" : "off")
@@ -60,6 +60,9 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
 
 }  // namespace
 
-std::string check_report(const Scene& scene) { return describe_setup(scene, build_initial_state<2>(scene)); }
+std::string check_report(const Scene& scene) {
+  check_fits<2>(scene);
+  return describe_setup(scene, build_initial_state<2>(scene));
+}
 
 }  // namespace mpmshock

@@ -43,6 +43,14 @@ void write_attribute(hid_t loc, const char* name, hid_t type, const T* values, h
   check(H5Awrite(attr.get(), type, values), std::string("write attribute ") + name);
 }
 
+// A damaged header cannot make us allocate what the file does not hold: gzip compresses our most
+// repetitive fields ~230x, so more than 1024x the stored bytes (plus 1 MiB) is damage.
+void check_plausible_size(hid_t set, double bytes, const char* path) {
+  const double stored = static_cast<double>(H5Dget_storage_size(set));
+  if (bytes > 1024.0 * stored + 1048576.0)
+    throw std::runtime_error(std::string("dataset ") + path + " claims more values than the file holds");
+}
+
 template <class T>
 std::vector<T> read_rows(hid_t loc, const char* path, hid_t mem_type, std::size_t expected_rows,
                          const std::vector<hsize_t>& tail) {
@@ -54,8 +62,10 @@ std::vector<T> read_rows(hid_t loc, const char* path, hid_t mem_type, std::size_
   bool ok = rank == static_cast<int>(1 + tail.size()) && (expected_rows == 0 || dims[0] == expected_rows);
   for (std::size_t k = 0; ok && k < tail.size(); ++k) ok = dims[k + 1] == tail[k];
   if (!ok) throw std::runtime_error(std::string("dataset ") + path + " has an unexpected shape");
-  std::size_t count = 1;
-  for (hsize_t d : dims) count *= static_cast<std::size_t>(d);
+  double count_d = 1.0;
+  for (hsize_t d : dims) count_d *= static_cast<double>(d);
+  check_plausible_size(set.get(), count_d * sizeof(T), path);
+  const auto count = static_cast<std::size_t>(count_d);
   std::vector<T> out(count);
   if (count > 0) check(H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), std::string("read ") + path);
   return out;
@@ -153,6 +163,50 @@ std::vector<double> read_doubles(hid_t loc, const char* path, std::size_t expect
 
 std::vector<std::uint32_t> read_uint32(hid_t loc, const char* path, std::size_t expected_rows) {
   return read_rows<std::uint32_t>(loc, path, H5T_NATIVE_UINT32, expected_rows, {});
+}
+
+std::vector<unsigned char> read_raw(hid_t loc, const char* path, std::vector<hsize_t>& dims) {
+  Handle set(H5Dopen2(loc, path, H5P_DEFAULT), H5Dclose, std::string("open dataset ") + path);
+  Handle space(H5Dget_space(set.get()), H5Sclose, std::string("read the shape of ") + path);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0 || rank > 8) throw std::runtime_error(std::string("dataset ") + path + " has an unexpected rank");
+  dims.assign(static_cast<std::size_t>(rank), 0);
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  Handle file_type(H5Dget_type(set.get()), H5Tclose, std::string("read the type of ") + path);
+  Handle type(H5Tget_native_type(file_type.get(), H5T_DIR_ASCEND), H5Tclose, std::string("read the type of ") + path);
+  const std::size_t size = H5Tget_size(type.get());
+  if (size == 0 || size > 64 || H5Tis_variable_str(type.get()) > 0)
+    throw std::runtime_error(std::string("dataset ") + path + " has an unexpected type");
+  // No larger than the file holds: a damaged header cannot make us allocate what is not there.
+  const double count = [&] {
+    double c = 1.0;
+    for (hsize_t d : dims) c *= static_cast<double>(d);
+    return c;
+  }();
+  check_plausible_size(set.get(), count * static_cast<double>(size), path);
+  std::vector<unsigned char> out(static_cast<std::size_t>(count) * size);
+  if (!out.empty())
+    check(H5Dread(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), std::string("read ") + path);
+  return out;
+}
+
+std::vector<std::string> dataset_names(hid_t loc, const char* group) {
+  std::vector<std::string> names;
+  if (!has_link(loc, group)) return names;
+  Handle g(H5Gopen2(loc, group, H5P_DEFAULT), H5Gclose, std::string("open group ") + group);
+  hsize_t index = 0;
+  auto visit = [](hid_t parent, const char* name, const H5L_info_t*, void* out) -> herr_t {
+    H5O_info_t info;
+#if H5_VERSION_GE(1, 12, 0)
+    if (H5Oget_info_by_name3(parent, name, &info, H5O_INFO_BASIC, H5P_DEFAULT) < 0) return -1;
+#else
+    if (H5Oget_info_by_name2(parent, name, &info, H5O_INFO_BASIC, H5P_DEFAULT) < 0) return -1;
+#endif
+    if (info.type == H5O_TYPE_DATASET) static_cast<std::vector<std::string>*>(out)->push_back(name);
+    return 0;
+  };
+  check(H5Literate(g.get(), H5_INDEX_NAME, H5_ITER_INC, &index, visit, &names), std::string("list group ") + group);
+  return names;
 }
 
 std::vector<std::uint8_t> read_uint8(hid_t loc, const char* path, std::size_t expected_rows) {

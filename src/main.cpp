@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,7 @@
 namespace {
 
 constexpr const char* kUsage = R"(usage: mpmshock SCENE [--set key=value]... [--check] [--quiet] [--force] [--threads N [--fixed-threads]]
-       mpmshock --restart SNAPSHOT [--set key=value]... [--quiet] [--force] [--threads N [--fixed-threads]]
+       mpmshock --restart SNAPSHOT [--set key=value]... [--check] [--quiet] [--force] [--threads N [--fixed-threads]]
        mpmshock --help | --version | --keys
 
 Runs the material-point simulation of the impact that SCENE (a key = value file) describes and
@@ -30,7 +31,8 @@ summary.json into its output_dir.
   --quiet          no progress line on stderr
   --force          replace the outputs of an earlier run in output_dir
   --restart SNAP   continue the run that snapshot SNAP belongs to, from its state, in its
-                   directory (--set end_time=... to run longer; later outputs need --force)
+                   directory (--set end_time=... to run longer; later outputs need --force);
+                   with --check, only validate SNAP
   --threads N      use at most N threads (default: OMP_NUM_THREADS or all cores); the run
                    measures its steps and uses fewer where that is faster (a busy machine)
   --fixed-threads  use all the threads for every step, even where fewer would be faster
@@ -102,7 +104,6 @@ Args parse_args(int argc, char** argv) {
     }
   }
   if (!a.restart.empty() && !a.scene.empty()) usage_error("give a scene file or --restart SNAPSHOT, not both");
-  if (!a.restart.empty() && a.check) usage_error("--check takes a scene file, not --restart");
   if (a.scene.empty() && a.restart.empty()) usage_error("no scene file given");
   return a;
 }
@@ -124,6 +125,10 @@ int main(int argc, char** argv) {
   if (args.threads > 0) omp_set_num_threads(args.threads);
   mpmshock::install_stop_handlers();
   try {
+    if (!args.restart.empty() && args.check) {
+      std::fputs(mpmshock::check_restart(args.restart, args.overrides).c_str(), stdout);
+      return mpmshock::kExitOk;
+    }
     if (!args.restart.empty()) {
       const mpmshock::RunOptions options{args.quiet, args.force, args.fixed_threads};
       const mpmshock::RunResult result = mpmshock::restart_run(args.restart, args.overrides, options);
@@ -138,6 +143,10 @@ int main(int argc, char** argv) {
     const mpmshock::RunResult result = mpmshock::run_scene(scene, {args.quiet, args.force, args.fixed_threads});
     report(result);
     return result.exit_code;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "mpmshock: error: out of memory: the run needs more memory than this machine can give it; "
+                         "use a coarser cell_size, smaller bodies or a smaller grid_margin (--check estimates it)\n");
+    return mpmshock::kExitBadInput;
   } catch (const mpmshock::SceneError& e) {
     std::fprintf(stderr, "mpmshock: error: %s\n", e.what());
     return mpmshock::kExitBadInput;

@@ -13,7 +13,7 @@ std::string conservation_header(int dimension) {
 template <int D>
 Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append)
     : scene_(scene), dir_(dir), regions_(open_output(dir / "regions.csv", append ? "a" : "w")),
-      conservation_(open_output(dir / "conservation.csv", append ? "a" : "w")) {
+      conservation_(open_output(dir / "conservation.csv", append ? "a" : "w")), xdmf_(xdmf_path()) {
   if (!append) {
     std::fprintf(regions_.get(), "%s\n", kRegionsHeader);
     std::fprintf(conservation_.get(), "%s\n", conservation_header(D).c_str());
@@ -45,8 +45,7 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);
   const GridGeometry<D>& g = sim.grid().geo;
-  xdmf_.push_back({name, sim.time(), sim.particles().size(), scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h});
-  write_xdmf((dir_ / kXdmfName).string(), xdmf_);
+  xdmf_.add({name, sim.time(), sim.particles().size(), scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h});
 }
 
 template class Outputs<2>;

@@ -1,5 +1,7 @@
 // Continuing a run from one of its snapshots.
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <set>
 #include <sstream>
 
@@ -32,11 +34,115 @@ void check_restart_overrides(const std::string& snapshot, const std::vector<std:
   }
 }
 
+// The lines of a resolved scene that are the run's state (not changeable on restart).
+std::vector<std::string> state_lines(const std::string& resolved) {
+  std::vector<std::string> out;
+  std::istringstream in(resolved);
+  for (std::string line; std::getline(in, line);) {
+    const std::string key = override_key(line);
+    if (key.rfind("region.", 0) == 0 || restart_changeable_keys().count(key)) continue;
+    out.push_back(line);
+  }
+  return out;
+}
+
+// A snapshot restarted in its own directory must belong to the run whose outputs are there:
+// another run's snapshot copied in would mix two runs in one directory.
+void check_same_run(const std::string& snapshot, const Scene& snapshot_scene, const fs::path& dir) {
+  const fs::path scene_file = dir / "scene.txt";
+  if (!fs::exists(scene_file)) return;
+  std::vector<std::string> there;
+  try {
+    there = state_lines(resolved_scene(load_scene(scene_file.string())));
+  } catch (const SceneError&) {
+    throw SceneError("snapshot " + snapshot + ": " + scene_file.string() + " does not parse, so the directory's run " +
+                     "cannot be told from the snapshot's; restart into a new directory with --set output_dir=...");
+  }
+  const std::vector<std::string> mine = state_lines(resolved_scene(snapshot_scene));
+  for (std::size_t k = 0; k < std::max(mine.size(), there.size()); ++k) {
+    const std::string a = k < mine.size() ? mine[k] : "", b = k < there.size() ? there[k] : "";
+    if (a == b) continue;
+    throw SceneError("snapshot " + snapshot + " belongs to another run than the one in " + dir.string() +
+                     ": the snapshot has '" + a + "', scene.txt has '" + b +
+                     "'; restart it into a new directory with --set output_dir=...");
+  }
+}
+
+// Everything read from a snapshot is checked before it is used: the clock, the schedule, the
+// bodies against the scene, and every point (finite, J > 0, inside the grid). A snapshot that
+// fails is refused (exit 2) naming what is wrong.
+template <int D>
+void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometry<D>& grid,
+                      const std::string& snapshot) {
+  auto bad = [&](const std::string& why) { throw SceneError("snapshot " + snapshot + ": " + why); };
+  const RunState& run = r.run;
+  if (!(std::isfinite(run.clock.time) && run.clock.time >= 0.0)) bad("its time is not a time");
+  if (run.clock.steps < 0) bad("its step count is negative");
+  if (!(std::isfinite(run.clock.max_signal) && run.clock.max_signal > 0.0)) bad("its signal speed is not positive");
+  if (!(std::isfinite(run.schedule.last_dt) && run.schedule.last_dt >= 0.0)) bad("its last time step is not a time");
+  const int index = run.schedule.snapshot_index;
+  if (index < 0 || index > 99999) bad("its snapshot_index " + std::to_string(index) + " is out of range");
+  const int own = snapshot_number(snapshot);
+  if (own >= 0 && own != index)
+    bad("it says it is snapshot " + std::to_string(index) + " but its file name says " + std::to_string(own));
+
+  // The bodies as the scene builds them.
+  const double a = scene.particle_spacing();
+  const auto columns = static_cast<std::size_t>(std::lround(scene.width / a));
+  const std::size_t lattice[2] = {columns * static_cast<std::size_t>(std::lround(scene.target_height / a)),
+                                  columns * static_cast<std::size_t>(std::lround(scene.flyer_height / a))};
+  const BodySummary* bodies[2] = {&run.target, &run.flyer};
+  std::size_t material = 0;
+  for (int b = 0; b < 2; ++b) {
+    if (bodies[b]->lattice_points != lattice[b] || bodies[b]->material_points > lattice[b])
+      bad("its " + bodies[b]->name + " (" + std::to_string(bodies[b]->lattice_points) +
+          " lattice points) does not match its scene (" + std::to_string(lattice[b]) + ")");
+    material += bodies[b]->material_points;
+  }
+  const Particles<D>& p = r.points;
+  const std::size_t n = p.size();
+  if (n != material) bad("it holds " + std::to_string(n) + " points, its bodies " + std::to_string(material));
+
+  std::vector<bool> seen(n, false);
+  for (std::size_t q = 0; q < n; ++q) {
+    if (p.id[q] >= n || seen[p.id[q]]) bad("its point ids are not a numbering of its points");
+    seen[p.id[q]] = true;
+  }
+  const Model model(scene);
+  const double J_min = model.limiting_compression();
+  auto finite = [](const auto& values) {
+    const auto* d = reinterpret_cast<const double*>(values.data());
+    const std::size_t count = values.size() * sizeof(values[0]) / sizeof(double);
+    return std::all_of(d, d + count, [](double v) { return std::isfinite(v); });
+  };
+  for (const auto* field : {&p.m, &p.V0, &p.E, &p.P, &p.q, &p.eps_p})
+    if (!finite(*field)) bad("it holds a value that is not a finite number (NaN or infinity)");
+  if (!finite(p.x) || !finite(p.v) || !finite(p.F) || !finite(p.L) || !finite(p.s) || !finite(p.alpha))
+    bad("it holds a value that is not a finite number (NaN or infinity)");
+  std::visit(
+      [&](auto shape) {
+        using Shape = decltype(shape);
+        for (std::size_t q = 0; q < n; ++q) {
+          const std::string which = "point " + std::to_string(p.id[q]);
+          if (!(p.m[q] > 0.0 && p.V0[q] > 0.0)) bad(which + " has no mass or volume");
+          if (!(p.J(q) > J_min)) bad(which + " has J = det F = " + std::to_string(p.J(q)) + ", not a volume");
+          const Vec<D>& x = p.x[q];
+          if (!(x[0] >= 0.0 && x[0] < grid.width())) bad(which + " lies outside the column (x = " + std::to_string(x[0]) + " m)");
+          if constexpr (D == 3)
+            if (!(x[2] >= 0.0 && x[2] < grid.depth())) bad(which + " lies outside the column (z)");
+          const int row = Shape::first_row(x[1], grid);
+          if (!(row >= 0 && row <= grid.ny - Shape::support)) bad(which + " lies outside the grid (y = " + std::to_string(x[1]) + " m)");
+        }
+      },
+      model.shape);
+}
+
 template <int D>
 RunResult restart_from(const std::string& snapshot, const std::vector<std::string>& overrides,
                        const RunOptions& options) {
   Restart<D> r = read_snapshot<D>(snapshot);
   const Scene scene = parse_scene(r.run.scene_text, snapshot + " (scene)", overrides);
+  check_fits<D>(scene);
   const double t0 = r.run.clock.time;
   if (!(scene.end_time > t0))
     throw SceneError(scene.where("end_time") + ": key 'end_time': the snapshot is at t = " + std::to_string(t0 * 1e9) +
@@ -48,11 +154,15 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   const fs::path dir = new_dir ? fs::path(scene.output_dir) : fs::absolute(snapshot).parent_path();
   const int index = r.run.schedule.snapshot_index;
   const GridGeometry<D> grid = build_grid_geometry<D>(scene);
+  validate_restart(r, scene, grid, snapshot);
   std::vector<XdmfSnapshot> earlier;
   bool append = false;
+  DirectoryLock lock;
   if (new_dir) {
-    prepare_output_dir(scene, options.force);
+    lock = prepare_output_dir(scene, options.force);
   } else {
+    lock = DirectoryLock(dir, snapshot + ": ");
+    check_same_run(snapshot, parse_scene(r.run.scene_text, snapshot + " (scene)"), dir);
     // Later snapshots and rows belong to the continuation this restart replaces.
     std::vector<fs::path> later;
     for (const auto& e : fs::directory_iterator(dir))
@@ -72,8 +182,12 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
     for (int k = 0; k <= index; ++k) {
       const fs::path p = dir / snapshot_name(k);
       if (!fs::exists(p)) continue;
-      const SnapshotHeader h = read_snapshot_header(p.string());
-      earlier.push_back({p.filename().string(), h.time, h.points, h.grid, grid.nx, grid.ny, grid.y_min, grid.h});
+      try {
+        const SnapshotHeader h = read_snapshot_header(p.string());
+        earlier.push_back({p.filename().string(), h.time, h.points, h.grid, grid.nx, grid.ny, grid.y_min, grid.h});
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "mpmshock: warning: %s is left out of %s: %s\n", p.string().c_str(), kXdmfName, e.what());
+      }
     }
   }
   r.run.scene_text = resolved_scene(scene);
@@ -96,6 +210,18 @@ RunResult restart_run(const std::string& snapshot, const std::vector<std::string
                       const RunOptions& options) {
   check_restart_overrides(snapshot, overrides);
   return restart_from<2>(snapshot, overrides, options);
+}
+
+std::string check_restart(const std::string& snapshot, const std::vector<std::string>& overrides) {
+  check_restart_overrides(snapshot, overrides);
+  Restart<2> r = read_snapshot<2>(snapshot);
+  const Scene scene = parse_scene(r.run.scene_text, snapshot + " (scene)", overrides);
+  check_fits<2>(scene);
+  validate_restart(r, scene, build_grid_geometry<2>(scene), snapshot);
+  std::ostringstream out;
+  out << "snapshot " << snapshot << ": t = " << r.run.clock.time * 1e9 << " ns, step " << r.run.clock.steps << ", "
+      << r.points.size() << " material points; checksum and state valid\n";
+  return out.str();
 }
 
 }  // namespace mpmshock

@@ -11,23 +11,24 @@ namespace mpmshock {
 
 namespace {
 
+// Everything that can fail for the scene's sake (its size, its voids) and every allocation comes
+// before the output directory is touched: a refused or impossible run deletes and writes nothing.
 template <int D>
 RunResult run_new(const Scene& scene, const RunOptions& options) {
+  check_fits<D>(scene);
   InitialState<D> initial = build_initial_state<D>(scene);  // SceneError on voids that cannot fit
-  if (const std::string w = stability_warning(scene); !w.empty() && !options.quiet)
-    std::fprintf(stderr, "mpmshock: warning: %s; the run stops with a diagnostic if it goes wrong\n", w.c_str());
-  const fs::path dir(scene.output_dir);
-  prepare_output_dir(scene, options.force);
-
+  for (const std::string& w : scene_warnings(scene)) std::fprintf(stderr, "mpmshock: warning: %s\n", w.c_str());
   RunState run;
   run.scene_text = resolved_scene(scene);
   run.target = initial.target;
   run.flyer = initial.flyer;
   run.initial = compute_totals(initial.particles);
+  Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
+
+  const fs::path dir(scene.output_dir);
+  const DirectoryLock lock = prepare_output_dir(scene, options.force);
   write_text(dir / "scene.txt", run.scene_text);
   write_voids(dir / "voids.csv", run.flyer, run.target);
-
-  Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
   Outputs<D> out(scene, dir, false);
   out.sample(sim, 0.0);
   run.clock = sim.clock();

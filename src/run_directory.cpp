@@ -1,5 +1,9 @@
 #include "mpmshock/run_directory.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <fstream>
 #include <stdexcept>
 #include <vector>
@@ -13,43 +17,81 @@ std::string snapshot_name(int index) {
 }
 
 int snapshot_number(const fs::path& p) {
+  // Exactly snapshot_ + at least five digits + .h5, as snapshot_name writes them.
   const std::string name = p.filename().string();
-  int k = -1;
-  char tail[8] = {0};
-  if (std::sscanf(name.c_str(), "snapshot_%d.%7s", &k, tail) == 2 && std::string(tail) == "h5") return k;
-  return -1;
+  const std::string prefix = "snapshot_", suffix = ".h5";
+  if (name.size() < prefix.size() + 5 + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return -1;
+  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return std::stoi(digits);
 }
 
 bool is_run_output(const fs::path& p) {
-  const std::string name = p.filename().string();
+  std::string name = p.filename().string();
+  // Our temporary files are our names plus .tmp.
+  if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) name.erase(name.size() - 4);
   for (const char* own : {"regions.csv", "conservation.csv", "summary.json", "scene.txt", "voids.csv", kXdmfName})
     if (name == own) return true;
-  return name.rfind("snapshot_", 0) == 0 && (p.extension() == ".h5" || p.extension() == ".tmp");
+  return snapshot_number(name) >= 0;
 }
 
-void prepare_output_dir(const Scene& scene, bool force) {
+DirectoryLock::DirectoryLock(const fs::path& dir, const std::string& where) {
+  const fs::path path = dir / ".mpmshock.lock";
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw std::runtime_error("cannot create " + path.string() + " (is the directory writable?)");
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    char pid[32] = {0};
+    const ssize_t n = ::pread(fd_, pid, sizeof pid - 1, 0);
+    ::close(fd_);
+    fd_ = -1;
+    throw SceneError(where + "'" + dir.string() + "' is in use by another mpmshock run" +
+                     (n > 0 ? " (pid " + std::string(pid, static_cast<std::size_t>(n)) + ")" : std::string()) +
+                     "; wait for it to finish, or choose another output_dir");
+  }
+  const std::string me = std::to_string(::getpid());
+  if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, me.data(), me.size(), 0) < 0) {
+    // The pid is only for the message of a run that is refused; the lock itself holds.
+  }
+}
+
+DirectoryLock& DirectoryLock::operator=(DirectoryLock&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = other.fd_;
+    other.fd_ = -1;
+  }
+  return *this;
+}
+
+DirectoryLock::~DirectoryLock() {
+  if (fd_ >= 0) ::close(fd_);  // closing releases the lock
+}
+
+DirectoryLock prepare_output_dir(const Scene& scene, bool force) {
   const std::string& dir = scene.output_dir;
   const std::string key = scene.where("output_dir") + ": key 'output_dir': ";
   std::error_code ec;
-  if (fs::exists(dir, ec)) {
-    if (!fs::is_directory(dir, ec)) throw SceneError(key + "'" + dir + "' exists and is not a directory");
-    std::vector<fs::path> earlier;
-    for (const auto& entry : fs::directory_iterator(dir, ec))
-      if (is_run_output(entry.path())) earlier.push_back(entry.path());
-    if (!earlier.empty() && !force)
-      throw SceneError(key + "'" + dir + "' holds the outputs of an earlier run; pass --force to replace them, or " +
-                       "choose another output_dir");
-    for (const fs::path& p : earlier) fs::remove(p, ec);
-  } else {
-    fs::create_directories(dir, ec);
-    if (ec) throw std::runtime_error("cannot create output_dir '" + dir + "': " + ec.message());
-  }
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw SceneError(key + "'" + dir + "' exists and is not a directory");
+  fs::create_directories(dir, ec);
+  if (ec) throw std::runtime_error("cannot create output_dir '" + dir + "': " + ec.message());
+  DirectoryLock lock(dir, key);
+  std::vector<fs::path> earlier;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (is_run_output(entry.path())) earlier.push_back(entry.path());
+  if (!earlier.empty() && !force)
+    throw SceneError(key + "'" + dir + "' holds the outputs of an earlier run; pass --force to replace them, or " +
+                     "choose another output_dir");
+  for (const fs::path& p : earlier) fs::remove(p, ec);
   // Fail now, not after an hour of computing, if the directory cannot be written.
   const fs::path probe = fs::path(dir) / ".mpmshock-write-test";
   std::FILE* f = std::fopen(probe.c_str(), "w");
   if (!f) throw std::runtime_error("output_dir '" + dir + "' is not writable");
   std::fclose(f);
   fs::remove(probe, ec);
+  return lock;
 }
 
 File open_output(const fs::path& path, const char* mode) {

@@ -18,6 +18,17 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// A scene file is a page of text: anything much larger is not one (`mpmshock /dev/zero`).
+constexpr std::size_t kMaxSceneBytes = 1 << 20;
+constexpr std::size_t kMaxLineBytes = 4096;
+constexpr std::size_t kMaxKeyLength = 64;
+
+// Text from the input as a message quotes it: at most 60 characters.
+std::string excerpt(const std::string& text) {
+  if (text.size() <= 60) return "'" + text + "'";
+  return "'" + text.substr(0, 50) + "...' (" + std::to_string(text.size()) + " characters)";
+}
+
 // Where a value came from: a file line or a --set argument.
 struct Origin {
   std::string where;  // "scene.cfg:12" or "--set"
@@ -216,7 +227,7 @@ const std::vector<Key>& keys() {
                          FIELD(cell_size)));
     k.push_back(integer("particles_per_cell", closed(1, 8), "2",
                         "material points per cell in each direction", FIELD(particles_per_cell)));
-    k.push_back(quantity("grid_margin", D::length, Range{-kInf, kInf, false, false}, "auto",
+    k.push_back(quantity("grid_margin", D::length, closed(0.0, 10.0), "auto",
                          "empty grid kept beyond each free surface; auto = 8 cells + 2 velocity end_time",
                          FIELD(grid_margin)));
     k.push_back(quantity("end_time", D::time, Range{0.0, 1.0, true, false}, "1 us", "simulated time to run",
@@ -249,7 +260,7 @@ const std::vector<Key>& keys() {
     // Material (the paper's aluminium)
     k.push_back(quantity("density", D::density, Range{0.0, 1e5, true, false}, "2700 kg/m3", "solid reference density rho0",
                          FIELD(material.density)));
-    k.push_back(quantity("youngs_modulus", D::pressure, positive(), "69 GPa",
+    k.push_back(quantity("youngs_modulus", D::pressure, Range{0.0, 1e13, true, false}, "69 GPa",
                          "Young's modulus E (with nu gives the shear modulus)", FIELD(material.youngs_modulus)));
     k.push_back(quantity("poisson_ratio", D::none, open(-1.0, 0.5), "0.33", "Poisson's ratio nu",
                          FIELD(material.poisson_ratio)));
@@ -273,7 +284,7 @@ const std::vector<Key>& keys() {
     k.push_back(quantity("initial_temperature", D::temperature, positive(), "300 K",
                          "initial temperature T0", FIELD(material.initial_temperature)));
     // Output
-    k.push_back(text("output_dir", "output", "directory for regions.csv, snapshots and the summary",
+    k.push_back(text("output_dir", "output", "directory for regions.csv, snapshots and the summary (no control characters, no '#')",
                      FIELD(output_dir)));
     k.push_back(quantity("sample_interval", D::time, positive(), "10 ns",
                          "simulated time between rows of regions.csv and conservation.csv", FIELD(sample_interval)));
@@ -345,10 +356,21 @@ bool valid_utf8(const std::string& s) {
 }
 
 bool valid_key_name(const std::string& key) {
-  if (key.empty()) return false;
+  if (key.empty() || key.size() > kMaxKeyLength) return false;
   return std::all_of(key.begin(), key.end(), [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-';
   });
+}
+
+// A path must read back from scene.txt as it was written: no control characters (a newline would
+// end the line) and no '#' (it would start a comment).
+void check_path(const Origin& at, const std::string& key, const std::string& path) {
+  for (char c : path) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f)
+      throw error_at(at, key, "the path has a control character (byte " + std::to_string(u) + "); choose another name");
+    if (c == '#') throw error_at(at, key, "the path has a '#', which starts a comment in scene files; choose another name");
+  }
 }
 
 struct Entry {
@@ -401,24 +423,39 @@ RegionSpec parse_region(const Entry& e) {
 }
 
 // Lines of a scene file as entries; syntax errors name the file and line.
+// Lines end at \n, \r\n or a lone \r (old Mac files).
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '\n' && text[i] != '\r') continue;
+    lines.push_back(text.substr(start, i - start));
+    if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    start = i + 1;
+  }
+  if (start < text.size()) lines.push_back(text.substr(start));
+  return lines;
+}
+
 std::vector<Entry> read_entries(const std::string& text, const std::string& name) {
   std::vector<Entry> out;
-  std::istringstream in(text);
-  std::string line;
   int number = 0;
-  while (std::getline(in, line)) {
+  for (std::string line : split_lines(text)) {
     ++number;
     const Origin at{name + ":" + std::to_string(number)};
+    if (line.size() > kMaxLineBytes)
+      throw SceneError(at.where + ": the line is " + std::to_string(line.size()) + " bytes long; a scene line has at most " +
+                       std::to_string(kMaxLineBytes));
     if (!valid_utf8(line)) throw SceneError(at.where + ": the line has bytes that are not UTF-8 text");
     if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
     line = trim(line);
     if (line.empty()) continue;
     const auto eq = line.find('=');
     if (eq == std::string::npos)
-      throw SceneError(at.where + ": expected 'key = value', got '" + line + "'");
+      throw SceneError(at.where + ": expected 'key = value', got " + excerpt(line));
     Entry e{trim(line.substr(0, eq)), trim(line.substr(eq + 1)), at};
     if (e.key.empty()) throw SceneError(at.where + ": a key is missing before '='");
-    if (!valid_key_name(e.key)) throw SceneError(at.where + ": '" + e.key + "' is not a key name");
+    if (!valid_key_name(e.key)) throw SceneError(at.where + ": " + excerpt(e.key) + " is not a key name");
     if (e.value.empty()) throw error_at(at, e.key, "missing value");
     out.push_back(std::move(e));
   }
@@ -429,19 +466,30 @@ std::vector<Entry> read_entries(const std::string& text, const std::string& name
 
 std::string override_key(const std::string& arg) { return trim(arg.substr(0, arg.find('='))); }
 
-std::string stability_warning(const Scene& s) {
-  if (s.cfl > 0.5) return "cfl " + format_number(s.cfl) + " > 0.5 was measured unstable in jetting cases (docs/stability.md)";
-  return "";
+std::vector<std::string> scene_warnings(const Scene& s) {
+  std::vector<std::string> out;
+  if (s.cfl > 0.5)
+    out.push_back("cfl " + format_number(s.cfl) + " > 0.5 was measured unstable in jetting cases (docs/stability.md)");
+  if (s.snapshot_interval > 0.0 && s.end_time / s.snapshot_interval > 1000)
+    out.push_back("snapshot_interval " + format_number(s.snapshot_interval) + " s writes " +
+                  format_number(std::floor(s.end_time / s.snapshot_interval)) + " snapshot files");
+  if (s.end_time / s.sample_interval > 100000)
+    out.push_back("sample_interval " + format_number(s.sample_interval) + " s writes " +
+                  format_number(std::floor(s.end_time / s.sample_interval)) + " rows per region to regions.csv");
+  return out;
 }
 
 namespace {
 
 Entry parse_override(const std::string& arg, int index) {
-  const Origin at{"--set #" + std::to_string(index) + " (" + arg + ")"};
+  const Origin at{"--set #" + std::to_string(index) + " (" + (arg.size() <= 60 ? arg : excerpt(arg)) + ")"};
+  if (arg.size() > kMaxLineBytes)
+    throw SceneError(at.where + ": the argument is " + std::to_string(arg.size()) + " bytes long; at most " +
+                     std::to_string(kMaxLineBytes));
   const auto eq = arg.find('=');
   if (eq == std::string::npos) throw SceneError(at.where + ": expected --set key=value");
   Entry e{override_key(arg), trim(arg.substr(eq + 1)), at};
-  if (!valid_key_name(e.key)) throw SceneError(at.where + ": '" + e.key + "' is not a key name");
+  if (!valid_key_name(e.key)) throw SceneError(at.where + ": " + excerpt(e.key) + " is not a key name");
   if (e.value.empty()) throw error_at(at, e.key, "missing value");
   if (!valid_utf8(e.value)) throw error_at(at, e.key, "the value has bytes that are not UTF-8 text");
   return e;
@@ -486,8 +534,19 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   if (!(points <= 2.0e9))
     fail("cell_size", "the scene would need " + format_number(std::round(points)) +
                           " material points; at most 2e9 are supported");
-  const double steps_estimate = s.end_time * (s.material.sound_speed + s.velocity) / (s.cfl * s.cell_size);
-  if (!(steps_estimate <= 1e12)) fail("end_time", "the run would take more than 1e12 time steps");
+  // The first time step sees the longitudinal sound speed (bulk plus shear with strength) and the
+  // impact speed; shocked material is faster still, so this is a floor on the step count.
+  const Material& mat = s.material;
+  const double cL2 = mat.sound_speed * mat.sound_speed +
+                     (s.effects.plasticity ? (4.0 / 3.0) * mat.shear_modulus() / mat.density : 0.0);
+  const double signal = std::sqrt(cL2) + s.velocity;
+  const double steps_estimate = s.end_time * signal / (s.cfl * s.cell_size);
+  if (!(steps_estimate <= 1e12))
+    fail("end_time", "the run would take more than " + format_number(std::floor(steps_estimate)) +
+                         " time steps (fastest signal " + format_number(signal) + " m/s); at most 1e12 are supported");
+  if (s.snapshot_interval > 0.0 && s.end_time / s.snapshot_interval > 99999)
+    fail("snapshot_interval", "the run would write " + format_number(std::floor(s.end_time / s.snapshot_interval)) +
+                                  " snapshots; at most 99999 are supported");
 }
 
 }  // namespace
@@ -538,6 +597,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
     }
     const Key* k = find_key(key);
     if (!k) throw error_at(e.at, key, "unknown key" + did_you_mean(key));
+    if (k->kind == Kind::text && key == "output_dir") check_path(e.at, key, e.value);
     if (k->default_text == "auto" && e.value == "auto") continue;
     k->set(scene, e.value, e.at);
   }
@@ -564,10 +624,13 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   if (fs::is_directory(path, ec)) throw SceneError(path + ": is a directory, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open the scene file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
+  std::string text(kMaxSceneBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.bad()) throw SceneError(path + ": cannot read the scene file");
-  std::string text = buffer.str();
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxSceneBytes)
+    throw SceneError(path + ": is larger than " + std::to_string(kMaxSceneBytes / 1024) +
+                     " KiB; a scene file is a page of text (is this the right file?)");
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // a UTF-8 byte-order mark (some editors write one)
   if (text.find('\0') != std::string::npos) throw SceneError(path + ": is not a text file (it holds NUL bytes)");
   if (trim(text).empty()) throw SceneError(path + ": the scene file is empty; an empty scene is most likely a mistake "

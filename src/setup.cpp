@@ -1,9 +1,13 @@
 #include "mpmshock/setup.hpp"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "mpmshock/model.hpp"
+#include "mpmshock/strip_bins.hpp"
 
 namespace mpmshock {
 
@@ -21,6 +25,48 @@ GridGeometry<D> build_grid_geometry(const Scene& s) {
   g.lp = 0.5 / static_cast<double>(s.particles_per_cell);  // uGIMP: the point's initial half-width
   g.ny = below + above + 1;
   return g;
+}
+
+template <int D>
+SizeEstimate estimate_size(const Scene& s) {
+  SizeEstimate e;
+  const double a = s.particle_spacing();
+  const double columns = std::round(s.width / a);
+  const double rows = std::round(s.target_height / a) + std::round(s.flyer_height / a);
+  e.points = columns * rows;  // before the voids are cut: an upper bound
+  const double margin = s.derived_grid_margin();
+  const double nx = std::round(s.width / s.cell_size);
+  const double ny = std::ceil((s.flyer_height + margin) / s.cell_size) + std::ceil((s.target_height + margin) / s.cell_size) + 1;
+  e.nodes = nx * ny;
+  Particles<D> sample;
+  const StrengthLaw strength = strength_of(s);
+  sample.enable_strength(has_stress(strength), has_back_stress(strength));
+  e.point_bytes = e.points * static_cast<double>(sample.bytes_per_point() + StripBins::kBytesPerPoint);
+  e.node_bytes = e.nodes * static_cast<double>(Grid<D>::bytes_per_node());
+  return e;
+}
+
+template <int D>
+void check_fits(const Scene& s) {
+  const SizeEstimate e = estimate_size<D>(s);
+  // The key that makes the size: the points' spacing, or the grid's margin (which grows with
+  // end_time when it is automatic).
+  const bool points_dominate = e.point_bytes >= e.node_bytes;
+  const std::string key = points_dominate ? "cell_size" : (s.grid_margin >= 0.0 ? "grid_margin" : "end_time");
+  auto fail = [&](const std::string& why) { throw SceneError(s.where(key) + ": key '" + key + "': " + why); };
+  char counts[160];
+  std::snprintf(counts, sizeof counts, "%.3g material points, %.3g grid nodes (grid margin %.3g m)", e.points, e.nodes,
+                s.derived_grid_margin());
+  if (!(e.nodes < 2e9)) fail(std::string("the grid would be too large to index: ") + counts);
+  const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES)), page = static_cast<double>(sysconf(_SC_PAGESIZE));
+  const double memory = pages > 0 && page > 0 ? pages * page : 0.0;
+  if (memory > 0.0 && !(e.bytes() <= 0.9 * memory)) {
+    char text[400];
+    std::snprintf(text, sizeof text, "the run would need about %.3g GiB (%s), more than this machine's %.3g GiB of memory%s",
+                  e.bytes() / 1073741824.0, counts, memory / 1073741824.0,
+                  key == "end_time" ? "; the automatic grid margin grows with end_time: set grid_margin" : "");
+    fail(text);
+  }
 }
 
 namespace {
@@ -82,6 +128,10 @@ InitialState<2> build_initial_state<2>(const Scene& s) {
   return st;
 }
 
+template SizeEstimate estimate_size<2>(const Scene&);
+template SizeEstimate estimate_size<3>(const Scene&);
+template void check_fits<2>(const Scene&);
+template void check_fits<3>(const Scene&);
 template GridGeometry<2> build_grid_geometry<2>(const Scene&);
 template GridGeometry<3> build_grid_geometry<3>(const Scene&);
 

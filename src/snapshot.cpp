@@ -1,12 +1,21 @@
 #include "mpmshock/snapshot.hpp"
 
+#include <poll.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
 
 #include "mpmshock/hdf5_io.hpp"
+#include "mpmshock/signals.hpp"
 #include "mpmshock/version.hpp"
 
 namespace mpmshock {
@@ -160,6 +169,145 @@ void write_grid(hid_t file, const SnapshotOptions<D>& o) {
     h5::write_dataset(g, names[d], H5T_NATIVE_DOUBLE, velocity[d].data(), dims, "m/s", what[d], {1});
 }
 
+// FNV-1a, 64 bits: a checksum, not a cryptographic hash; it catches the flipped bits and cut
+// files of a damaged disk or copy, not a forger.
+class Fnv1a {
+ public:
+  void add(const void* data, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < n; ++k) h_ = (h_ ^ b[k]) * 1099511628211ull;
+  }
+  void add(const std::string& s) { add(s.data(), s.size()); }
+  std::string hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
+    return buf;
+  }
+
+ private:
+  std::uint64_t h_ = 14695981039346656037ull;
+};
+
+// The first kUserBlock bytes of a snapshot are HDF5's user block: the library skips them, and
+// mpmshock keeps there a checksum of every byte after them (format 2). A restart checks it before
+// the HDF5 library reads anything, because that library is not safe against damaged files (it can
+// crash on them: found by tests/fuzz/fuzz_snapshot.cpp).
+constexpr std::size_t kUserBlock = 512;
+constexpr const char* kChecksumMagic = "mpmshock snapshot checksum fnv1a64 ";
+
+std::string file_checksum_line(std::FILE* f, std::uint64_t& length) {
+  Fnv1a sum;
+  std::vector<unsigned char> buffer(1 << 20);
+  length = 0;
+  if (std::fseek(f, static_cast<long>(kUserBlock), SEEK_SET) != 0) return "";
+  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), f)) > 0;) {
+    sum.add(buffer.data(), n);
+    length += n;
+  }
+  return std::string(kChecksumMagic) + sum.hex() + " bytes " + std::to_string(length) + "\n";
+}
+
+// Writes the checksum of a finished file into its user block.
+void seal(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "r+b");
+  if (!f) throw std::runtime_error("cannot reopen " + path + " to seal it");
+  std::uint64_t length = 0;
+  const std::string line = file_checksum_line(f, length);
+  const bool ok = !line.empty() && std::fseek(f, 0, SEEK_SET) == 0 &&
+                  std::fwrite(line.data(), 1, line.size(), f) == line.size() && std::fflush(f) == 0;
+  std::fclose(f);
+  if (!ok) throw std::runtime_error("cannot write the checksum of " + path);
+}
+
+enum class Seal { valid, absent };
+
+// Checks a file's seal before HDF5 opens it: valid, absent (format 1, or a user block whose first
+// line was damaged), or a mismatch, which throws.
+Seal check_seal(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw std::runtime_error("cannot open it");
+  char head[kUserBlock + 1] = {0};
+  const std::size_t got = std::fread(head, 1, kUserBlock, f);
+  const std::string first(head, got);
+  if (first.rfind(kChecksumMagic, 0) != 0) {
+    std::fclose(f);
+    return Seal::absent;
+  }
+  std::uint64_t length = 0;
+  const std::string line = file_checksum_line(f, length);
+  std::fclose(f);
+  if (first.compare(0, line.size(), line) != 0)
+    throw std::runtime_error("damaged: its bytes do not match their checksum (a flipped bit, a cut or edited file)");
+  return Seal::valid;
+}
+
+// Runs `read` in a child process first where the file has no valid seal: a crash of the HDF5
+// library on a damaged file then ends the child, not this run, and is reported as damage. Some
+// damaged files send the library into an endless loop, so the child has a time limit far above
+// what reading a sound file of that size takes (30 s + 1 s per 10 MB), dies with this process, and
+// a SIGINT/SIGTERM while it reads ends it at once. MPMSHOCK_SNAPSHOT_READ_LIMIT (seconds) replaces
+// the limit.
+template <class F>
+void probe_in_child(const std::string& path, F&& read) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  unsigned limit_s = 30 + static_cast<unsigned>(ec ? 0 : bytes / 10'000'000);
+  if (const char* v = std::getenv("MPMSHOCK_SNAPSHOT_READ_LIMIT"); v && std::atoi(v) > 0)
+    limit_s = static_cast<unsigned>(std::atoi(v));  // for tests of the limit itself
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error("cannot make a pipe to check it");
+  std::fflush(nullptr);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("cannot fork to check it");
+  if (pid == 0) {
+    ::close(fds[0]);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(3);
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    ::alarm(limit_s);
+    int code = 0;
+    try {
+      read();
+    } catch (const std::exception& e) {
+      const std::string what = e.what();
+      [[maybe_unused]] const ssize_t n = ::write(fds[1], what.data(), what.size());
+      code = 2;
+    }
+    ::_exit(code);
+  }
+  ::close(fds[1]);
+  std::string message;
+  char buf[512];
+  for (;;) {
+    if (stop_signal() != 0) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, nullptr, 0);
+      ::close(fds[0]);
+      throw std::runtime_error(std::string("not checked: stopped by ") +
+                               (stop_signal() == SIGINT ? "SIGINT" : "SIGTERM") + " while reading it");
+    }
+    pollfd readable{fds[0], POLLIN, 0};
+    if (::poll(&readable, 1, 200) <= 0) continue;  // timeout, or a signal: look at stop_signal again
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n <= 0) break;
+    message.append(buf, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 2) throw std::runtime_error(message);
+  if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)
+    throw std::runtime_error("damaged: the HDF5 library was still reading it after " + std::to_string(limit_s) +
+                             " s (a loop in a damaged file)");
+  throw std::runtime_error("damaged: the HDF5 library failed reading it (" +
+                           (WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
+                                                : "exit " + std::to_string(WEXITSTATUS(status))) +
+                           ")");
+}
+
 }  // namespace
 
 template <int D>
@@ -169,7 +317,9 @@ void write_snapshot(const std::string& path, const Particles<D>& p, const Hugoni
   const std::string tmp = path + ".tmp";
   try {
     {
-      Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create " + tmp);
+      Handle create(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "make file properties");
+      h5::check(H5Pset_userblock(create.get(), kUserBlock), "reserve the user block");
+      Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, create.get(), H5P_DEFAULT), H5Fclose, "create " + tmp);
       const hid_t f = file.get();
       h5::write_double_attribute(f, "time", run.clock.time);
       h5::write_int_attribute(f, "step", run.clock.steps);
@@ -187,6 +337,7 @@ void write_snapshot(const std::string& path, const Particles<D>& p, const Hugoni
       if (options.grid) write_grid(f, options);
       h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flush " + tmp);
     }
+    seal(tmp);
     std::error_code ec;
     std::filesystem::rename(tmp, path, ec);
     if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
@@ -198,9 +349,10 @@ void write_snapshot(const std::string& path, const Particles<D>& p, const Hugoni
   }
 }
 
-SnapshotHeader read_snapshot_header(const std::string& path) {
-  h5::prepare_library();
-  try {
+namespace {
+
+SnapshotHeader read_header(const std::string& path) {
+  {
     Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open it as HDF5");
     SnapshotHeader h;
     h.time = h5::read_double_attribute(file.get(), "time");
@@ -208,25 +360,43 @@ SnapshotHeader read_snapshot_header(const std::string& path) {
     h.grid = h5::has_link(file.get(), "grid");
     h.dimension = h5::has_attribute(file.get(), "dimension") ? static_cast<int>(h5::read_int_attribute(file.get(), "dimension")) : 2;
     return h;
-  } catch (const std::runtime_error& e) {
+  }
+}
+
+}  // namespace
+
+SnapshotHeader read_snapshot_header(const std::string& path) {
+  h5::prepare_library();
+  try {
+    if (check_seal(path) == Seal::absent) probe_in_child(path, [&] { (void)read_header(path); });
+    return read_header(path);
+  } catch (const std::exception& e) {
     throw std::runtime_error("snapshot " + path + ": " + e.what());
   }
 }
 
+namespace {
+
 template <int D>
-Restart<D> read_snapshot(const std::string& path) {
-  h5::prepare_library();
-  try {
+Restart<D> read_state(const std::string& path) {
+  {
     Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open it as HDF5");
     const hid_t f = file.get();
     if (!h5::has_attribute(f, "format_version") || !h5::has_link(f, "restart"))
       throw std::runtime_error("not an mpmshock snapshot with restart data");
+    const std::int64_t format = h5::read_int_attribute(f, "format_version");
+    if (format < 1 || format > 2)
+      throw std::runtime_error("format_version " + std::to_string(format) + " is not one this mpmshock reads (1, 2)");
+    const int dimension = h5::has_attribute(f, "dimension") ? static_cast<int>(h5::read_int_attribute(f, "dimension")) : 2;
+    if (dimension != D) throw std::runtime_error("a " + std::to_string(dimension) + "D snapshot read as " + std::to_string(D) + "D");
     Restart<D> r;
     RunState& run = r.run;
     run.scene_text = h5::read_string_attribute(f, "scene");
     run.clock.time = h5::read_double_attribute(f, "time");
     run.clock.steps = h5::read_int_attribute(f, "step");
-    const auto n = static_cast<std::size_t>(h5::read_int_attribute(f, "particle_count"));
+    const std::int64_t count = h5::read_int_attribute(f, "particle_count");
+    if (count < 1) throw std::runtime_error("particle_count " + std::to_string(count) + " is not a number of points");
+    const auto n = static_cast<std::size_t>(count);
     const hsize_t d = D, C = kDeviatorComponents<D>;
 
     Handle rg(H5Gopen2(f, "restart", H5P_DEFAULT), H5Gclose, "open /restart");
@@ -260,7 +430,10 @@ Restart<D> read_snapshot(const std::string& path) {
     p.id = h5::read_uint32(f, "/particles/id", n);
     const std::vector<std::uint8_t> body = h5::read_uint8(f, "/particles/body", n);
     p.body.resize(n);
-    for (std::size_t q = 0; q < n; ++q) p.body[q] = body[q] ? Body::target : Body::flyer;
+    for (std::size_t q = 0; q < n; ++q) {
+      if (body[q] > 1) throw std::runtime_error("/particles/body holds " + std::to_string(body[q]) + ", not 0 or 1");
+      p.body[q] = body[q] ? Body::target : Body::flyer;
+    }
     unflatten(h5::read_doubles(f, "/particles/position", n, {d}), p.x);
     unflatten(h5::read_doubles(f, "/particles/velocity", n, {d}), p.v);
     p.m = h5::read_doubles(f, "/particles/mass", n, {});
@@ -281,8 +454,20 @@ Restart<D> read_snapshot(const std::string& path) {
     }
     if (back) unflatten(h5::read_doubles(g, "back_stress", n, {C}), p.alpha);
     return r;
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error("snapshot " + path + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+template <int D>
+Restart<D> read_snapshot(const std::string& path) {
+  h5::prepare_library();
+  try {
+    if (check_seal(path) == Seal::absent) probe_in_child(path, [&] { (void)read_state<D>(path); });
+    return read_state<D>(path);
+  } catch (const std::exception& e) {
+    // A snapshot that cannot be restarted is a bad request (exit 2), whatever is wrong with it.
+    throw SceneError("snapshot " + path + ": " + e.what());
   }
 }
 

@@ -119,19 +119,33 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   return result;
 }
 
+namespace {
+
+// A JSON number, or null for NaN and infinities (which JSON cannot write).
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+}  // namespace
+
 void write_summary_json(const fs::path& path, const RunResult& r) {
   const fs::path tmp = path.string() + ".tmp";
   File f = open_output(tmp);
   std::fprintf(f.get(),
-               "{\n  \"exit_code\": %d,\n  \"failure\": \"%s\",\n  \"steps\": %lld,\n  \"start_time\": %.10g,\n"
-               "  \"end_time\": %.10g,\n  \"wall_seconds\": %.6g,\n  \"material_points\": %zu,\n"
-               "  \"point_steps_per_second\": %.6g,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n"
-               "  \"mass_error\": %.6g,\n  \"momentum_error\": %.6g,\n  \"energy_error\": %.6g,\n"
-               "  \"porosity\": %.10g,\n  \"voids\": %zu\n}\n",
-               r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps), r.start_time,
-               r.end_time, r.wall_seconds, r.points, r.point_steps_per_second, r.threads,
-               static_cast<long long>(r.steps_with_fewer_threads), r.mass_error, r.momentum_error, r.energy_error,
-               r.porosity, r.voids);
+               "{\n  \"exit_code\": %d,\n  \"failure\": \"%s\",\n  \"steps\": %lld,\n  \"start_time\": %s,\n"
+               "  \"end_time\": %s,\n  \"wall_seconds\": %s,\n  \"material_points\": %zu,\n"
+               "  \"point_steps_per_second\": %s,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n"
+               "  \"mass_error\": %s,\n  \"momentum_error\": %s,\n  \"energy_error\": %s,\n"
+               "  \"porosity\": %s,\n  \"voids\": %zu\n}\n",
+               r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps),
+               json_number(r.start_time).c_str(), json_number(r.end_time).c_str(), json_number(r.wall_seconds).c_str(),
+               r.points, json_number(r.point_steps_per_second).c_str(), r.threads,
+               static_cast<long long>(r.steps_with_fewer_threads), json_number(r.mass_error).c_str(),
+               json_number(r.momentum_error).c_str(), json_number(r.energy_error).c_str(),
+               json_number(r.porosity).c_str(), r.voids);
   flush_or_throw(f.get(), path.string());
   f.reset();
   fs::rename(tmp, path);

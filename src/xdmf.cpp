@@ -1,6 +1,7 @@
 #include "mpmshock/xdmf.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -67,76 +68,126 @@ void grid_field(std::ostringstream& x, const XdmfSnapshot& s, const char* name, 
 
 }  // namespace
 
-std::string xdmf_document(const std::vector<XdmfSnapshot>& snapshots) {
+namespace {
+
+constexpr const char* kHead =
+    "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n  <Domain>\n"
+    "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+constexpr const char* kFoot = "  </Domain>\n</Xdmf>\n";
+
+// One time step of the point cloud.
+std::string particle_step(const XdmfSnapshot& s) {
   std::ostringstream x;
   x.precision(17);
-  x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n  <Domain>\n";
-  x << "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (const XdmfSnapshot& s : snapshots) {
-    x << "      <Grid Name=\"" << s.file << "\" GridType=\"Uniform\">\n";
-    x << "        <Time Value=\"" << s.time << "\" />\n";
-    x << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.points
-      << "\" NodesPerElement=\"1\" />\n";
-    x << "        <Geometry GeometryType=\"XY\">\n";
-    data_item(x, dims(s.points, "2"), s.file + ":/particles/position", "          ");
-    x << "        </Geometry>\n";
-    for (const char* name : {"density", "pressure", "temperature", "internal_energy", "plastic_strain",
-                             "viscous_pressure", "mass", "volume"})
-      attribute(x, s, name, "Scalar", "");
-    point_velocity(x, s);
-    attribute(x, s, "stress", "Tensor", "3 3");
-    matrix2(x, s, "deformation_gradient");
-    matrix2(x, s, "velocity_gradient");
-    x << "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\""
-      << s.points << "\" NumberType=\"UInt\" Precision=\"4\" Format=\"HDF\">" << s.file
-      << ":/particles/id</DataItem>\n        </Attribute>\n";
-    x << "        <Attribute Name=\"body\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\""
-      << s.points << "\" NumberType=\"UChar\" Precision=\"1\" Format=\"HDF\">" << s.file
-      << ":/particles/body</DataItem>\n        </Attribute>\n";
-    x << "      </Grid>\n";
-  }
-  x << "    </Grid>\n";
-
-  bool any_grid = false;
-  for (const XdmfSnapshot& s : snapshots) any_grid = any_grid || s.grid;
-  if (any_grid) {
-    x << "    <Grid Name=\"grid\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (const XdmfSnapshot& s : snapshots) {
-      if (!s.grid) continue;
-      x << "      <Grid Name=\"" << s.file << " grid\" GridType=\"Uniform\">\n";
-      x << "        <Time Value=\"" << s.time << "\" />\n";
-      // A 3D co-rectilinear mesh one node thick: dimensions, origin and spacing in z, y, x order.
-      // (ParaView lays a 2DCoRectMesh in its y-z plane.)
-      x << "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"1 " << s.ny << " " << s.nx << "\" />\n";
-      x << "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n";
-      x << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">0 " << s.y_min
-        << " 0</DataItem>\n";
-      x << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">1 " << s.h << " "
-        << s.h << "</DataItem>\n";
-      x << "        </Geometry>\n";
-      grid_field(x, s, "mass", {"mass"});
-      grid_field(x, s, "velocity", {"velocity_x", "velocity_y"});
-      x << "      </Grid>\n";
-    }
-    x << "    </Grid>\n";
-  }
-  x << "  </Domain>\n</Xdmf>\n";
+  x << "      <Grid Name=\"" << s.file << "\" GridType=\"Uniform\">\n";
+  x << "        <Time Value=\"" << s.time << "\" />\n";
+  x << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.points << "\" NodesPerElement=\"1\" />\n";
+  x << "        <Geometry GeometryType=\"XY\">\n";
+  data_item(x, dims(s.points, "2"), s.file + ":/particles/position", "          ");
+  x << "        </Geometry>\n";
+  for (const char* name : {"density", "pressure", "temperature", "internal_energy", "plastic_strain",
+                           "viscous_pressure", "mass", "volume"})
+    attribute(x, s, name, "Scalar", "");
+  point_velocity(x, s);
+  attribute(x, s, "stress", "Tensor", "3 3");
+  matrix2(x, s, "deformation_gradient");
+  matrix2(x, s, "velocity_gradient");
+  x << "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\""
+    << s.points << "\" NumberType=\"UInt\" Precision=\"4\" Format=\"HDF\">" << s.file
+    << ":/particles/id</DataItem>\n        </Attribute>\n";
+  x << "        <Attribute Name=\"body\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\""
+    << s.points << "\" NumberType=\"UChar\" Precision=\"1\" Format=\"HDF\">" << s.file
+    << ":/particles/body</DataItem>\n        </Attribute>\n";
+  x << "      </Grid>\n";
   return x.str();
 }
 
-void write_xdmf(const std::string& path, const std::vector<XdmfSnapshot>& snapshots) {
-  const std::string tmp = path + ".tmp";
-  const std::string text = xdmf_document(snapshots);
+// One time step of the grid (snapshot_grid = on).
+std::string grid_step(const XdmfSnapshot& s) {
+  std::ostringstream x;
+  x.precision(17);
+  x << "      <Grid Name=\"" << s.file << " grid\" GridType=\"Uniform\">\n";
+  x << "        <Time Value=\"" << s.time << "\" />\n";
+  // A 3D co-rectilinear mesh one node thick: dimensions, origin and spacing in z, y, x order.
+  // (ParaView lays a 2DCoRectMesh in its y-z plane.)
+  x << "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"1 " << s.ny << " " << s.nx << "\" />\n";
+  x << "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n";
+  x << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">0 " << s.y_min
+    << " 0</DataItem>\n";
+  x << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">1 " << s.h << " " << s.h
+    << "</DataItem>\n";
+  x << "        </Geometry>\n";
+  grid_field(x, s, "mass", {"mass"});
+  grid_field(x, s, "velocity", {"velocity_x", "velocity_y"});
+  x << "      </Grid>\n";
+  return x.str();
+}
+
+// What follows the point cloud's steps: its closing tag, the grid collection, the end.
+std::string tail(const std::string& grid_steps) {
+  std::string t = "    </Grid>\n";
+  if (!grid_steps.empty())
+    t += "    <Grid Name=\"grid\" GridType=\"Collection\" CollectionType=\"Temporal\">\n" + grid_steps + "    </Grid>\n";
+  return t + kFoot;
+}
+
+}  // namespace
+
+std::string xdmf_document(const std::vector<XdmfSnapshot>& snapshots) {
+  std::string steps, grid_steps;
+  for (const XdmfSnapshot& s : snapshots) {
+    steps += particle_step(s);
+    if (s.grid) grid_steps += grid_step(s);
+  }
+  return kHead + steps + tail(grid_steps);
+}
+
+XdmfIndex::XdmfIndex(std::string path, std::vector<XdmfSnapshot> earlier) : path_(std::move(path)) {
+  if (earlier.empty()) return;
+  for (const XdmfSnapshot& s : earlier) add_to_memory(s);
+  rewrite();
+}
+
+void XdmfIndex::add_to_memory(const XdmfSnapshot& s) {
+  steps_bytes_ += particle_step(s).size();
+  if (s.grid) grid_steps_ += grid_step(s);
+  snapshots_.push_back(s);
+}
+
+void XdmfIndex::rewrite() {
+  const std::string tmp = path_ + ".tmp";
+  const std::string text = xdmf_document(snapshots_);
   std::FILE* f = std::fopen(tmp.c_str(), "w");
   if (!f) throw std::runtime_error("cannot open " + tmp + " for writing");
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
   std::fclose(f);
   std::error_code ec;
-  if (ok) std::filesystem::rename(tmp, path, ec);
+  if (ok) std::filesystem::rename(tmp, path_, ec);
   if (!ok || ec) {
     std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + path + " (disk full?)");
+    throw std::runtime_error("cannot write " + path_ + " (disk full?)");
   }
+}
+
+void XdmfIndex::add(const XdmfSnapshot& s) {
+  const bool first = snapshots_.empty();
+  const std::size_t offset = std::strlen(kHead) + steps_bytes_;  // where the tail starts now
+  const std::string step = particle_step(s);
+  add_to_memory(s);
+  if (first) {
+    rewrite();
+    return;
+  }
+  // Overwrite the tail with the new step and the (grown) tail: each snapshot costs its own entry
+  // (and the grid collection's), not the whole index. A crash in between leaves an index that
+  // stops early; a restart writes it whole again.
+  std::FILE* f = std::fopen(path_.c_str(), "r+");
+  if (!f) throw std::runtime_error("cannot open " + path_ + " for writing");
+  const std::string text = step + tail(grid_steps_);
+  const bool ok = std::fseek(f, static_cast<long>(offset), SEEK_SET) == 0 &&
+                  std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
+  std::fclose(f);
+  if (!ok) throw std::runtime_error("cannot write " + path_ + " (disk full?)");
 }
 
 }  // namespace mpmshock

@@ -59,6 +59,19 @@ expect 0 "steps: " -- tiny.scene --quiet --force --set end_time=20ns --set outpu
 expect 0 "steps: " -- tiny.scene --quiet --set end_time=10ns --set thermal=off --set output_dir=cold
 tail -n 1 cold/regions.csv | cut -d, -f8,9 | grep -qx "nan,nan" || fail "thermal = off did not write nan temperatures"
 
+# A scene with old Mac line endings (a lone CR) is read line by line, not as one comment line.
+expect 0 "bodies \(width 0.04 mm" -- "$data/good/cr_only_line_endings.scene" --check
+
+# Paths that could not be read back from scene.txt, and over-long arguments, are refused.
+expect 2 "key 'output_dir': the path has a '#'" -- tiny.scene --check --set "output_dir=a#b"
+expect 2 "key 'output_dir': the path has a control character" -- tiny.scene --check --set "output_dir=a
+b"
+expect 2 "at most 4096" -- tiny.scene --check --set "velocity=$(head -c 5000 /dev/zero | tr '\0' 1)"
+expect 2 "is larger than 1024 KiB" -- /dev/zero --check
+# A leading space in a restart's --set names the same key: the run goes to the new directory.
+"$bin" tiny.scene --quiet --set end_time=20ns --set output_dir=lead >/dev/null 2>&1
+expect 0 "outputs: .*lead2" -- --restart lead/snapshot_00001.h5 --quiet --set end_time=30ns --set " output_dir=lead2"
+
 # Material that leaves the grid stops the run with a diagnostic and a last snapshot (exit 3).
 printf 'porosity = 1\nwidth = 40 um\ntarget_height = 300 um\nflyer_height = 300 um\ncell_size = 10 um\n' > thin.scene
 printf 'grid_margin = 20 um\nend_time = 200 ns\nsnapshot_interval = 0\noutput_dir = thin\n' >> thin.scene

@@ -22,7 +22,7 @@ class Outputs {
   Outputs(const Scene& scene, const fs::path& dir, bool append);
 
   // Snapshots already in the directory that the XDMF index must keep listing (restart).
-  void keep_listing(std::vector<XdmfSnapshot> earlier) { xdmf_ = std::move(earlier); }
+  void keep_listing(std::vector<XdmfSnapshot> earlier) { xdmf_ = XdmfIndex(xdmf_path(), std::move(earlier)); }
 
   // One row per region in regions.csv and one in conservation.csv, at the simulation's time.
   void sample(const Simulation<D>& sim, double dt);
@@ -32,8 +32,9 @@ class Outputs {
  private:
   const Scene& scene_;
   fs::path dir_;
+  std::string xdmf_path() const { return (dir_ / kXdmfName).string(); }
   File regions_, conservation_;
-  std::vector<XdmfSnapshot> xdmf_;
+  XdmfIndex xdmf_;
 };
 
 extern template class Outputs<2>;

@@ -54,6 +54,10 @@ RunResult run_scene(const Scene& scene, const RunOptions& options);
 RunResult restart_run(const std::string& snapshot, const std::vector<std::string>& overrides,
                       const RunOptions& options);
 
+// --restart SNAPSHOT --check: reads and validates the snapshot (checksum, every value, the bodies
+// against the scene) without running; SceneError says what is wrong.
+std::string check_restart(const std::string& snapshot, const std::vector<std::string>& overrides);
+
 // The --check report: builds the initial state and describes it (bodies, grid, material points,
 // voids, time step, steps, memory).
 std::string check_report(const Scene& scene);

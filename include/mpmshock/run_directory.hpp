@@ -25,9 +25,27 @@ int snapshot_number(const fs::path& p);
 // The files a run writes; --force removes exactly these, never anything else in the directory.
 bool is_run_output(const fs::path& p);
 
-// Creates output_dir, or, if it holds an earlier run's outputs, removes them (with force) or
-// refuses; then checks that the directory can be written.
-void prepare_output_dir(const Scene& scene, bool force);
+// An exclusive lock on a run directory (flock on its .mpmshock.lock), held while the object
+// lives: a second run, or a restart, into a directory that a running mpmshock writes is refused
+// (exit 2). The kernel releases the lock when the process ends, however it ends, so no lock is
+// ever stale.
+class DirectoryLock {
+ public:
+  DirectoryLock() = default;
+  // Takes the lock or throws SceneError naming `where` ("scene:3: key 'output_dir'") and the pid
+  // of the run that holds it.
+  DirectoryLock(const fs::path& dir, const std::string& where);
+  DirectoryLock(DirectoryLock&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
+  DirectoryLock& operator=(DirectoryLock&& other) noexcept;
+  ~DirectoryLock();
+
+ private:
+  int fd_ = -1;
+};
+
+// Creates output_dir and locks it; if it holds an earlier run's outputs, removes them (with force)
+// or refuses; then checks that the directory can be written.
+DirectoryLock prepare_output_dir(const Scene& scene, bool force);
 
 struct FileCloser {
   void operator()(std::FILE* f) const {

@@ -103,8 +103,9 @@ Scene parse_scene(const std::string& text, const std::string& name,
 // The key a --set argument ("key=value") sets, trimmed as the parser trims it.
 std::string override_key(const std::string& arg);
 
-// A warning about numerical settings measured unstable (cfl > 0.5), or "" if none applies.
-std::string stability_warning(const Scene& scene);
+// Warnings about settings that run but may not be what the user wants: a cfl measured unstable,
+// thousands of snapshot files, millions of rows.
+std::vector<std::string> scene_warnings(const Scene& scene);
 
 // Every key with its resolved value in SI, one "key = value" line each: the scene exactly as run.
 std::string resolved_scene(const Scene& scene);

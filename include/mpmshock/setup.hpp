@@ -32,6 +32,21 @@ struct InitialState {
   BodySummary target, flyer;
 };
 
+// The memory a scene's run needs, estimated from the scene alone (nothing is allocated).
+struct SizeEstimate {
+  double points = 0.0, nodes = 0.0;
+  double point_bytes = 0.0, node_bytes = 0.0;
+  double bytes() const { return point_bytes + node_bytes; }
+};
+template <int D>
+SizeEstimate estimate_size(const Scene& scene);
+
+// Refuses (SceneError naming the key that makes it so) a scene whose points, grid or memory
+// cannot fit: more memory than the machine has, or a grid too large to index. Run before anything
+// is allocated, deleted or written.
+template <int D>
+void check_fits(const Scene& scene);
+
 // The grid of a scene: a periodic column covering both bodies plus grid_margin, with the impact
 // plane y = 0 on a grid line.
 template <int D>

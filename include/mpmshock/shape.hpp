@@ -37,6 +37,14 @@ namespace detail {
 // seam); comparisons, not the integer division of %, which dominated the stencil's cost.
 inline int wrap(int i, int n) { return i < 0 ? i + n : (i >= n ? i - n : i); }
 
+// floor(u) as an int, for any u: a point far off the grid (or NaN) gets a node index far outside
+// it, which the callers report, instead of an int conversion out of range (undefined behaviour).
+inline int floor_index(double u) {
+  if (!(u >= -1e9)) u = -1e9;
+  if (u > 1e9) u = 1e9;
+  return static_cast<int>(std::floor(u));
+}
+
 // Fills a stencil from a 1D rule applied on each axis, periodic in x and z. Rule::base(u) is the
 // first node touched at grid coordinate u; Rule::weights(d, lp, w, dw) the weights at d = u - base.
 template <class Rule, int S, int D>
@@ -66,7 +74,7 @@ template <class Rule, int S, int D>
 }
 
 struct LinearRule {
-  static int base(double u) { return static_cast<int>(std::floor(u)); }
+  static int base(double u) { return floor_index(u); }
   static void weights(double d, double, double* w, double* dw) {  // d in [0, 1)
     w[0] = 1.0 - d;
     w[1] = d;
@@ -76,7 +84,7 @@ struct LinearRule {
 };
 
 struct GimpRule {
-  static int base(double u) { return static_cast<int>(std::floor(u + 0.5)) - 1; }
+  static int base(double u) { return floor_index(u + 0.5) - 1; }
   // The uGIMP weight of a node at distance r (cells) from a point of half-width lp <= 1/2.
   static void node(double r, double lp, double& w, double& dw) {
     const double a = std::abs(r), sign = r < 0.0 ? -1.0 : 1.0;
@@ -102,7 +110,7 @@ struct GimpRule {
 };
 
 struct QuadraticBSplineRule {
-  static int base(double u) { return static_cast<int>(std::floor(u - 0.5)); }
+  static int base(double u) { return floor_index(u - 0.5); }
   static void weights(double d, double, double* w, double* dw) {  // d in [0.5, 1.5)
     w[0] = 0.5 * (1.5 - d) * (1.5 - d);
     w[1] = 0.75 - (d - 1.0) * (d - 1.0);

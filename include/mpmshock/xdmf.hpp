@@ -20,7 +20,22 @@ struct XdmfSnapshot {
 
 std::string xdmf_document(const std::vector<XdmfSnapshot>& snapshots);
 
-// Writes the document to PATH.tmp, then renames it over PATH.
-void write_xdmf(const std::string& path, const std::vector<XdmfSnapshot>& snapshots);
+// The index file of a run, grown by one snapshot at a time. The first write (and the first after
+// a restart, which lists the snapshots already there) writes the whole document to PATH.tmp and
+// renames it; later ones overwrite only the document's tail in place, so a run of thousands of
+// snapshots costs thousands of entries, not millions.
+class XdmfIndex {
+ public:
+  explicit XdmfIndex(std::string path, std::vector<XdmfSnapshot> earlier = {});
+  void add(const XdmfSnapshot& snapshot);
+
+ private:
+  void add_to_memory(const XdmfSnapshot& s);
+  void rewrite();
+  std::string path_;
+  std::vector<XdmfSnapshot> snapshots_;
+  std::size_t steps_bytes_ = 0;  // bytes of the point cloud's steps in the file
+  std::string grid_steps_;       // the grid collection's steps, rewritten with the tail
+};
 
 }  // namespace mpmshock

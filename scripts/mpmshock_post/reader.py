@@ -13,8 +13,10 @@ newer simulator (restart data, grid fields) still read.
 """
 
 import csv
+import io
 import json
 import re
+import sys
 from collections.abc import Mapping
 from pathlib import Path
 from typing import NamedTuple
@@ -38,15 +40,28 @@ def _text(value):
 
 
 def _read_csv(path):
-    """Header and rows (lists of strings) of a CSV file the simulator wrote."""
+    """Header and rows (lists of strings) of a CSV file the simulator wrote.
+
+    A run killed while it wrote a row leaves that last row cut short (no line end, or too few
+    fields): it is dropped with a one-line note on stderr, never plotted as a number cut in half.
+    """
     try:
         with open(path, newline="") as f:
-            rows = list(csv.reader(f))
+            text = f.read()
     except FileNotFoundError:
         raise PostError(f"{path} not found (did the run start in this directory?)") from None
+    rows = list(csv.reader(io.StringIO(text)))
     if not rows:
         raise PostError(f"{path} is empty")
-    return rows[0], rows[1:]
+    header, body = rows[0], rows[1:]
+    if body and (not text.endswith("\n") or len(body[-1]) != len(header)):
+        print(f"mpmshock-plot: note: {path}: its last row is incomplete (a run stopped while writing it); "
+              "it is left out", file=sys.stderr)
+        body = body[:-1]
+    for k, row in enumerate(body):
+        if len(row) != len(header):
+            raise PostError(f"{path}:{k + 2}: {len(row)} fields where the header has {len(header)}")
+    return header, body
 
 
 def _columns(path, header, rows, text_columns=(), int_columns=()):

@@ -232,3 +232,19 @@ def test_units_and_moments(ctx):
     rng = np.random.default_rng(1)
     _, _, skewness, kurtosis = moments(rng.exponential(size=200_000))  # skewness 2, excess kurtosis 6
     check(abs(skewness - 2) < 0.1 and abs(kurtosis - 6) < 0.6, f"exponential: S={skewness}, K={kurtosis}")
+
+
+def test_torn_last_row(ctx):
+    """A run killed while writing regions.csv leaves half a row: it is left out with a note, and
+    the plot is made from the complete rows."""
+    torn = ctx.tmp / "torn"
+    shutil.copytree(ctx.run, torn)
+    text = (torn / "regions.csv").read_text()
+    b800 = next(line for line in text.splitlines() if ",B800," in line)
+    (torn / "regions.csv").write_text(text + b800[:37])  # a B800 row cut in its 4th number
+    out = ctx.tmp / "torn.png"
+    done = expect_image(["timeseries", torn, "-o", out], out, PNG_MAGIC)
+    check("last row is incomplete" in done.stderr, f"no note about the torn row: {done.stderr}")
+    check("Traceback" not in done.stderr, done.stderr)
+    rows = reader.Run(torn).regions()["B800"]["time"]
+    check(len(rows) == len(reader.Run(ctx.run).regions()["B800"]["time"]), "the torn row was kept")
