@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
     double best = 1e9;
     for (int r = 0; r < 5; ++r) {
       const auto t0 = WallClock::now();
-      for (int k = 0; k < 20; ++k) (void)sample_regions(sim.particles(), scene.regions, t);
+      for (int k = 0; k < 20; ++k) (void)sample_regions(sim.particles(), scene.regions, t, sim.grid().geo.cross_section());
       best = std::min(best, std::chrono::duration<double>(WallClock::now() - t0).count() / 20);
     }
     return best;

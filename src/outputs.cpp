@@ -7,7 +7,7 @@ namespace mpmshock {
 
 std::string conservation_header(int dimension) {
   return std::string("time,step,dt,mass,momentum_x,momentum_y,") + (dimension == 3 ? "momentum_z," : "") +
-         "kinetic_energy,internal_energy,total_energy";
+         "kinetic_energy,internal_energy,total_energy,work_mismatch";
 }
 
 template <int D>
@@ -23,12 +23,14 @@ Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append)
 template <int D>
 void Outputs<D>::sample(const Simulation<D>& sim, double dt) {
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
-  write_region_rows(regions_.get(), sim.time(), sample_regions(sim.particles(), scene_.regions, thermal));
+  write_region_rows(regions_.get(), sim.time(), sample_regions(sim.particles(), scene_.regions, thermal,
+                                                                   sim.grid().geo.cross_section()));
   const Totals t = compute_totals(sim.particles());
   std::fprintf(conservation_.get(), "%.10g,%lld,%.6g,%.12g,", sim.time(), static_cast<long long>(sim.steps()), dt,
                t.mass);
   for (int d = 0; d < D; ++d) std::fprintf(conservation_.get(), "%.12g,", t.momentum[d]);
-  std::fprintf(conservation_.get(), "%.12g,%.12g,%.12g\n", t.kinetic, t.internal, t.total_energy());
+  std::fprintf(conservation_.get(), "%.12g,%.12g,%.12g,%.12g\n", t.kinetic, t.internal, t.total_energy(),
+               sim.clock().work_mismatch);
   flush_or_throw(regions_.get(), "regions.csv");
   flush_or_throw(conservation_.get(), "conservation.csv");
 }

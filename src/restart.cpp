@@ -2,9 +2,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <set>
 #include <sstream>
 
+#include "mpmshock/outputs.hpp"
+#include "mpmshock/regions.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/setup.hpp"
 #include "mpmshock/snapshot.hpp"
@@ -18,8 +21,18 @@ const std::set<std::string>& restart_changeable_keys() {
   static const std::set<std::string> keys = {
       "end_time",      "cfl",        "sample_interval", "snapshot_interval", "snapshot_compression",
       "snapshot_grid", "output_dir", "av_linear",       "av_quadratic",      "artificial_viscosity",
-      "update_scheme", "thermal"};
+      "update_scheme", "thermal",  "flip_fraction"};
   return keys;
+}
+
+// Rows appended to a CSV must have its columns: a run written by an mpmshock with other columns
+// continues only in a new output_dir.
+void check_csv_header(const fs::path& path, const std::string& expected, const std::string& snapshot) {
+  std::ifstream in(path);
+  std::string header;
+  if (!in || !std::getline(in, header) || header == expected) return;
+  throw SceneError(snapshot + ": " + path.string() +
+                   " has the columns of another mpmshock version; continue in a new directory (--set output_dir=DIR)");
 }
 
 void check_restart_overrides(const std::string& snapshot, const std::vector<std::string>& overrides) {
@@ -79,6 +92,7 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
   if (!(std::isfinite(run.clock.time) && run.clock.time >= 0.0)) bad("its time is not a time");
   if (run.clock.steps < 0) bad("its step count is negative");
   if (!(std::isfinite(run.clock.max_signal) && run.clock.max_signal > 0.0)) bad("its signal speed is not positive");
+  if (!std::isfinite(run.clock.work_mismatch)) bad("its work_mismatch is not finite");
   if (!(std::isfinite(run.schedule.last_dt) && run.schedule.last_dt >= 0.0)) bad("its last time step is not a time");
   const int index = run.schedule.snapshot_index;
   if (index < 0 || index > 99999) bad("its snapshot_index " + std::to_string(index) + " is out of range");
@@ -163,6 +177,8 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   } else {
     lock = DirectoryLock(dir, snapshot + ": ");
     check_same_run(snapshot, parse_scene(r.run.scene_text, snapshot + " (scene)"), dir);
+    check_csv_header(dir / "regions.csv", kRegionsHeader, snapshot);
+    check_csv_header(dir / "conservation.csv", conservation_header(D), snapshot);
     // Later snapshots and rows belong to the continuation this restart replaces.
     std::vector<fs::path> later;
     for (const auto& e : fs::directory_iterator(dir))

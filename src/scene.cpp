@@ -242,6 +242,10 @@ const std::vector<Key>& keys() {
         "bspline2",
         "bspline2 and gimp (3 x 3 nodes) remove most grid-crossing noise; bilinear: the paper's 4-node cells",
         FIELD(shape_function)));
+    k.push_back(quantity("flip_fraction", D::none, closed(0.0, 1.0), "1",
+                         "point velocity = f FLIP + (1 - f) PIC: 1 conserves energy to round-off but keeps point-to-point "
+                         "velocity noise; below 1 damps the noise, its kinetic energy becoming heat (docs/accuracy.md)",
+                         FIELD(flip_fraction)));
     k.push_back(quantity("av_linear", D::none, non_negative(), "0.2",
                          "linear artificial viscosity coefficient A1", FIELD(av_linear)));
     k.push_back(quantity("av_quadratic", D::none, non_negative(), "2",
@@ -506,6 +510,9 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   const double a = s.particle_spacing();
   if (!is_multiple(s.width, s.cell_size))
     fail("width", "must be a whole number of cells (cell_size = " + format_number(s.cell_size) + " m)");
+  if (s.width < 3.0 * s.cell_size * (1.0 - 1e-9))
+    fail("width", "must be at least 3 cells (the widest shape-function stencil); a narrower periodic column "
+                  "would put one node in a stencil twice");
   if (!is_multiple(s.target_height, a))
     fail("target_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
                               format_number(a) + " m)");

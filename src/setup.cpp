@@ -22,7 +22,7 @@ GridGeometry<D> build_grid_geometry(const Scene& s) {
   const int below = static_cast<int>(std::ceil((s.flyer_height + margin) / s.cell_size - 1e-9));
   const int above = static_cast<int>(std::ceil((s.target_height + margin) / s.cell_size - 1e-9));
   g.y_min = -below * s.cell_size;
-  g.lp = 0.5 / static_cast<double>(s.particles_per_cell);  // uGIMP: the point's initial half-width
+  g.lp = 0.5 / static_cast<double>(s.particles_per_cell);  // GIMP: the point's initial half-width
   g.ny = below + above + 1;
   return g;
 }

@@ -18,13 +18,16 @@ bool bin_points(StripBins& bins, const Particles<D>& pts, const GridGeometry<D>&
 // The kernels for one choice of shape function and laws: every combination the variants of
 // model.hpp allow is instantiated by std::visit, none is listed by hand.
 template <int D, class Shape, class Eos, class Strength, class Viscosity>
-Kernels<D> kernels_for(UpdateScheme scheme) {
+Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction) {
   constexpr bool stress = Strength::has_stress;
   Kernels<D> k{};
   k.bin = bin_points<D, Shape>;
   k.to_grid = particles_to_grid<D, Shape, stress>;
-  k.velocity_to_points = scheme == UpdateScheme::musl ? grid_to_particles_velocity<D, Shape, true>
-                                                      : grid_to_particles_velocity<D, Shape, false>;
+  const bool musl = scheme == UpdateScheme::musl, blend = flip_fraction < 1.0;
+  k.velocity_to_points = musl ? (blend ? grid_to_particles_velocity<D, Shape, true, true>
+                                       : grid_to_particles_velocity<D, Shape, true, false>)
+                              : (blend ? grid_to_particles_velocity<D, Shape, false, true>
+                                       : grid_to_particles_velocity<D, Shape, false, false>);
   k.gradient_work_and_move = velocity_gradient_work_and_move<D, Shape, stress>;
   k.update_points = update_all_points<D, Eos, Strength, Viscosity>;
   return k;
@@ -35,7 +38,7 @@ Kernels<D> kernels_for(const Model& m) {
   return std::visit(
       [&](auto shape, const auto& eos, const auto& strength, const auto& viscosity) {
         return kernels_for<D, decltype(shape), std::decay_t<decltype(eos)>, std::decay_t<decltype(strength)>,
-                           std::decay_t<decltype(viscosity)>>(m.scheme);
+                           std::decay_t<decltype(viscosity)>>(m.scheme, m.flip_fraction);
       },
       m.shape, m.eos, m.strength, m.viscosity);
 }
@@ -80,7 +83,8 @@ StepStatus Simulation<D>::step(double dt) {
   kernels_.to_grid(points_, bins_, grid_);                             // P2G: m_i, p_i, f_i
   update_grid_momentum(grid_, rows, dt);                               // a_i, v_i^{n+1}
   for (auto& e : effects_) e->after_grid_update(grid_, rows, dt);      //   (boundary conditions)
-  kernels_.velocity_to_points(points_, bins_, grid_, dt);              // G2P: FLIP v_p (MUSL: re-map m_p v_p)
+  kernels_.velocity_to_points(points_, bins_, grid_, dt,               // G2P: FLIP (/PIC) v_p (MUSL: re-map m_p v_p)
+                              model_.flip_fraction);
   if (musl) {
     remap_grid_velocity(grid_, rows);                                  // MUSL: v~_i
     for (auto& e : effects_) e->after_remap(grid_, rows);
@@ -91,6 +95,7 @@ StepStatus Simulation<D>::step(double dt) {
   clock_.time += dt;
   ++clock_.steps;
   clock_.max_signal = update.max_signal;
+  clock_.work_mismatch += update.work_mismatch;
   if (update.first_bad != ~std::size_t{0}) return {StepStatus::Code::bad_state, update.first_bad};
   if (left != kNoPoint) return {StepStatus::Code::left_grid, left};
   for (auto& e : effects_)

@@ -115,6 +115,7 @@ void write_restart(hid_t file, const Particles<D>& p, const RunState& run) {
   const hid_t g = group.get();
   const hsize_t N = p.size(), C = kDeviatorComponents<D>;
   h5::write_double_attribute(g, "max_signal", run.clock.max_signal);
+  h5::write_double_attribute(g, "work_mismatch", run.clock.work_mismatch);
   h5::write_int_attribute(g, "snapshot_index", run.schedule.snapshot_index);
   h5::write_double_attribute(g, "last_dt", run.schedule.last_dt);
   const Totals& t = run.initial;
@@ -402,6 +403,7 @@ Restart<D> read_state(const std::string& path) {
     Handle rg(H5Gopen2(f, "restart", H5P_DEFAULT), H5Gclose, "open /restart");
     const hid_t g = rg.get();
     run.clock.max_signal = h5::read_double_attribute(g, "max_signal");
+    run.clock.work_mismatch = h5::has_attribute(g, "work_mismatch") ? h5::read_double_attribute(g, "work_mismatch") : 0.0;
     run.schedule.snapshot_index = static_cast<int>(h5::read_int_attribute(g, "snapshot_index"));
     run.schedule.last_dt = h5::read_double_attribute(g, "last_dt");
     const std::vector<double> t = h5::read_doubles_attribute(g, "initial_totals");

@@ -21,7 +21,7 @@ struct WalshChristian {
 }  // namespace
 
 HugoniotTemperature::HugoniotTemperature(const Material& mat, int intervals)
-    : eos_(mat), cv_(mat.specific_heat), T0_(mat.initial_temperature) {
+    : eos_(mat), cv_(mat.specific_heat), T0_(mat.initial_temperature), gamma0_(mat.gruneisen_gamma) {
   const double J_limit = eos_.limiting_compression();
   // Stop short of the pole at J = 1 - 1/s where T_H diverges; no physical state gets close.
   J_min_ = J_limit + 0.02 * (1.0 - J_limit);
@@ -50,7 +50,7 @@ HugoniotTemperature::HugoniotTemperature(const Material& mat, int intervals)
 }
 
 double HugoniotTemperature::hugoniot_temperature(double J) const {
-  if (J >= 1.0) return T0_;
+  if (J >= 1.0) return T0_ * std::exp(gamma0_ * (1.0 - J));
   if (!(J >= J_min_)) return std::numeric_limits<double>::infinity();
   const double u = (1.0 - J) / dJ_;
   const auto k = static_cast<std::size_t>(u);

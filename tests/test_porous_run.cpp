@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
       }
       ++column;
     }
-    CHECK(column == 16);
+    CHECK(column == 19);
   }
   CHECK(rows == 7 * 6);
 

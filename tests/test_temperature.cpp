@@ -20,7 +20,26 @@ int main() {
   }
   // Reference state and the tension branch.
   CHECK_NEAR(temp.temperature(1.0, 0.0), 300.0, 1e-12);
-  CHECK_NEAR(temp.hugoniot_temperature(1.05), 300.0, 0.0);
+  CHECK_REL(temp.hugoniot_temperature(1.05), 300.0 * std::exp(1.96 * -0.05), 1e-15);
+  // No kink at J = 1: the one-sided slopes of T_H agree (both -gamma0 T0).
+  const double dJ = 1e-6;
+  CHECK_REL((temp.hugoniot_temperature(1.0 + dJ) - 300.0) / dJ, -1.96 * 300.0, 1e-4);
+  CHECK_REL((300.0 - temp.hugoniot_temperature(1.0 - dJ)) / dJ, -1.96 * 300.0, 2e-3);
+  // The whole model on an isentrope: from rest, dE = -P dV = -(P / rho0) dJ with P from the
+  // Mie-Gruneisen EOS. With gamma/V constant and c_v constant the isentrope is
+  // T = T0 exp(gamma0 (1 - J)) exactly, in expansion and in compression (RK4 in J, 2000 steps).
+  for (const double J_end : {1.08, 0.85}) {
+    double J = 1.0, E = 0.0;
+    const int n = 2000;
+    const double h = (J_end - 1.0) / n;
+    auto dE = [&](double j, double e) { return -eos.pressure(j, e) / al.density; };
+    for (int k = 0; k < n; ++k, J += h) {
+      const double k1 = dE(J, E), k2 = dE(J + h / 2, E + h / 2 * k1), k3 = dE(J + h / 2, E + h / 2 * k2),
+                   k4 = dE(J + h, E + h * k3);
+      E += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    CHECK_NEAR(temp.temperature(J_end, E), 300.0 * std::exp(1.96 * (1.0 - J_end)), J_end > 1 ? 1e-6 : 0.05);
+  }
   // Heat added at fixed volume raises T by dE / c_v.
   CHECK_NEAR(temp.temperature(0.9, eos.hugoniot_energy(0.9) + 88000.0) - temp.hugoniot_temperature(0.9), 100.0,
              1e-9);

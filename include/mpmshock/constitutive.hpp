@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include "mpmshock/model.hpp"
 #include "mpmshock/parallel.hpp"
@@ -24,7 +25,21 @@ struct PointState {
   double E, P, q;
   Deviator<D> s, alpha;
   double eps_p;
+  double work_mismatch = 0.0;  // out: work minus the trapezoid-rule work of the point's own deformation
 };
+
+// The energy-consistency diagnostic of a point's step: the work it was given (the exact work of the
+// nodal forces) minus the work of its own deformation by the trapezoid rule,
+// -(1/2)((P + q)^n + (P + q)^{n+1}) dV + V^{n+1/2} (1/2)(s^n + s^{n+1}) : L dt, per unit mass.
+// Summed over points and steps (times m) it is the internal energy the points hold that their own
+// compression did not give them (conservation.csv, work_mismatch).
+template <int D>
+inline void own_work_mismatch(PointState<D>& st, double rho0, double J_before, double J, double pq_before,
+                              const Deviator<D>& s_before, double dt) {
+  double own = -0.5 * (pq_before + st.P + st.q) * (J - J_before) / rho0;
+  own += 0.25 * dt * (J_before + J) / rho0 * (contract(s_before, st.L) + contract(st.s, st.L));
+  st.work_mismatch = st.work - own;
+}
 
 // One point, one step. Returns the point's signal speed (for the next time step), or a negative
 // number if the new state is not physical (J <= the EOS limit, or a non-finite result). Inlined
@@ -33,6 +48,8 @@ template <int D, class Eos, class Strength, class Viscosity>
 [[gnu::always_inline]] inline double update_point(PointState<D>& st, const Eos& eos, const Strength& strength,
                                                   const Viscosity& viscosity, double h, double dt) {
   const StrainRate<D> rate = strain_rate(st.L);
+  const double J_before = det(st.F), pq_before = st.P + st.q;
+  [[maybe_unused]] const Deviator<D> s_before = st.s;
 
   // Energy: the exact work of the step's nodal forces on the point (compression, plastic and
   // viscous work alike), which is what the points' kinetic energy lost.
@@ -58,10 +75,12 @@ template <int D, class Eos, class Strength, class Viscosity>
   if constexpr (Strength::has_stress) c2 += (4.0 / 3.0) * strength.shear_modulus / rho;
   if constexpr (!Viscosity::active) {
     st.q = 0.0;
+    own_work_mismatch(st, eos.rho0(), J_before, J, pq_before, s_before, dt);
     return std::sqrt(c2);
   } else {
     const double c_bulk = std::sqrt(c2_bulk);
     st.q = viscosity.pressure(rho, c_bulk, h, rate.trace());
+    own_work_mismatch(st, eos.rho0(), J_before, J, pq_before, s_before, dt);
     // Fastest signal at this point: longitudinal sound speed plus the viscous speed.
     const double Q = viscosity.signal(c_bulk, h, rate.trace());
     return Q + std::sqrt(Q * Q + c2);
@@ -71,6 +90,7 @@ template <int D, class Eos, class Strength, class Viscosity>
 struct StressUpdateResult {
   double max_signal = 0.0;                  // fastest |v| + sound (+ viscous) speed, for the next dt
   std::size_t first_bad = ~std::size_t{0};  // lowest index of a point in a bad state, if any
+  double work_mismatch = 0.0;               // sum of m (work - own trapezoid work) over the points [J]
 };
 
 // The update of every point, for one choice of laws.
@@ -82,6 +102,9 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
   double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};
   const double speed_limit2 = model.speed_limit * model.speed_limit;
+  // Per-chunk sums of the mismatch: a chunk is always kChunk consecutive points run in order by one
+  // thread, so the total (summed over chunks in order) is the same for any thread count.
+  std::vector<double> mismatch((pts.size() + kChunk - 1) / kChunk, 0.0);
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(max : max_signal) reduction(min : first_bad)
   for (std::size_t p = 0; p < pts.size(); ++p) {
     PointState<D> st{pts.L[p], pts.work[p], pts.F[p], pts.E[p], pts.P[p], pts.q[p], {}, {}, 0.0};
@@ -100,11 +123,14 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
       pts.eps_p[p] = st.eps_p;
     }
     if constexpr (Strength::has_back_stress) pts.alpha[p] = st.alpha;
+    mismatch[p / kChunk] += pts.m[p] * st.work_mismatch;
     const double speed2 = dot(pts.v[p], pts.v[p]);
     if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;
     max_signal = std::max(max_signal, std::sqrt(speed2) + signal);
   }
-  return {max_signal, first_bad};
+  double total_mismatch = 0.0;
+  for (double chunk : mismatch) total_mismatch += chunk;
+  return {max_signal, first_bad, total_mismatch};
 }
 
 // The signal speed of the fastest point in its current state (|v| + longitudinal sound speed),

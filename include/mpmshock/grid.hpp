@@ -18,10 +18,12 @@ struct GridGeometry {
   double h = 0.0;      // cell size
   double inv_h = 0.0;
   double y_min = 0.0;  // y of node row 0
-  double lp = 0.0;     // uGIMP: half-width of a material point's domain, in cells
+  double lp = 0.0;     // GIMP: initial half-width of a material point's domain, in cells
 
   double width() const { return nx * h; }
   double depth() const { return nz * h; }
+  // The area (3D) or width (2D, per metre of depth) of a horizontal section of the column.
+  double cross_section() const { return D == 2 ? width() : width() * depth(); }
   double y_max() const { return y_min + (ny - 1) * h; }
   // The period of a periodic axis (x, and z in 3D).
   double period(int axis) const { return axis == 0 ? width() : depth(); }

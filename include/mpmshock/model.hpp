@@ -33,6 +33,7 @@ struct Model {
   ViscosityLaw viscosity;
   std::optional<HugoniotTemperature> thermal;  // the paper's temperature model (thermal = on)
   UpdateScheme scheme;
+  double flip_fraction;  // 1: pure FLIP
   double cell_size;
   double cfl;
   double speed_limit;  // |v| above this is a numerical runaway, not physics

@@ -1,6 +1,14 @@
 // Region averages as the paper defines them (physics-notes section 5): over the material points
 // inside a horizontal band, the mean and standard deviation of density, pressure, temperature and
-// velocity, and the means of Rot^2, Div^2 and the squared strain-rate norm.
+// velocity, and the means of Rot^2, Div^2 and the squared strain-rate norm. These are means of the
+// points' own states: density_mean is each point's m / (V0 J), blind to the voids between points.
+//
+// The macroscopic averages are per area of the band instead (what a porous Hugoniot predicts):
+// macro_density = band mass / band area, macro_pressure = sum V P / band area, macro_normal_stress
+// = sum V (P + q - s_yy) / band area (the compressive stress across the band, which the jump
+// conditions give). Each point counts with the share of its y extent (its spacing stretched by
+// F_yy) inside the band, so a row of points crossing an edge does not make them jump. A band that
+// reaches past the material (a free surface, an open gap) counts the empty part as area.
 #pragma once
 
 #include <cstdio>
@@ -24,6 +32,7 @@ struct RegionStats {
   double rot2 = 0.0;          // |curl v|^2; in 2D (dv_y/dx - dv_x/dy)^2
   double div2 = 0.0;          // (div v)^2
   double strain_rate2 = 0.0;  // D : D with D = sym(grad v)
+  double macro_density = 0.0, macro_pressure = 0.0, macro_normal_stress = 0.0;
 };
 
 // The points of a region, in storage order. `y_top` is the highest target point.
@@ -39,9 +48,15 @@ template <int D>
 RegionStats region_stats(const Particles<D>& p, const std::vector<std::size_t>& points, const std::string& name,
                          const HugoniotTemperature* thermal);
 
+// The macroscopic averages of a band [lo, hi] (target points only, or all) over the cross-section
+// (the column's width in 2D, width x depth in 3D).
+template <int D>
+void macro_averages(const Particles<D>& p, double lo, double hi, bool target_only, double cross_section,
+                    RegionStats& s);
+
 template <int D>
 std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector<RegionSpec>& regions,
-                                        const HugoniotTemperature* thermal);
+                                        const HugoniotTemperature* thermal, double cross_section);
 
 // Squared rotation |curl v|^2 of a velocity gradient (the paper's Rot^2).
 inline double rotation2(const Mat<2>& L) {

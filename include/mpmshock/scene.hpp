@@ -59,6 +59,7 @@ struct Scene {
   double cfl = 0.3;
   UpdateScheme update_scheme = UpdateScheme::musl;
   ShapeFunction shape_function = ShapeFunction::bspline2;
+  double flip_fraction = 1.0;  // share of FLIP in the point velocity update; the rest is PIC
   double av_linear = 0.2;
   double av_quadratic = 2.0;
   std::int64_t seed = 1;

@@ -7,8 +7,11 @@
 //   bilinear  4-node cells, N_i = (1 + xi xi_i)(1 + eta eta_i)/4 (8-node in 3D): the paper's
 //             choice. Its gradient jumps where a point crosses a grid line, which puts grid-crossing
 //             noise into shocked material (README, "Method").
-//   gimp      uniform GIMP: each point is a square of half-width lp convolved with the hat; the
-//             gradient is continuous, 3 x 3 nodes.
+//   gimp      contiguous-particle GIMP (cpGIMP): each point is a rectangle convolved with the hat,
+//             its half-width on each axis the initial lp stretched by that diagonal entry of F
+//             (at most half a cell), so points that are compressed keep tiling the material; the
+//             gradient is continuous, 3 x 3 nodes. (Uniform GIMP, with lp fixed, makes a
+//             compressed block heat as it crosses the grid: README, "Method".)
 //   bspline2  quadratic B-spline, C1 on the grid, 3 x 3 nodes: the least noise.
 #pragma once
 
@@ -46,25 +49,26 @@ inline int floor_index(double u) {
 }
 
 // Fills a stencil from a 1D rule applied on each axis, periodic in x and z. Rule::base(u) is the
-// first node touched at grid coordinate u; Rule::weights(d, lp, w, dw) the weights at d = u - base.
+// first node touched at grid coordinate u; Rule::weights(d, lp, w, dw) the weights at d = u - base
+// for a point of half-width lp = Rule::half_width(g.lp, F_aa) on that axis.
 template <class Rule, int S, int D>
-[[gnu::always_inline]] inline Stencil<S, D> tensor_stencil(const Vec<D>& x, const GridGeometry<D>& g) {
+[[gnu::always_inline]] inline Stencil<S, D> tensor_stencil(const Vec<D>& x, const GridGeometry<D>& g, const Mat<D>& F) {
   Stencil<S, D> st;
   const double u = x[0] * g.inv_h;
   const int i0 = Rule::base(u);
-  Rule::weights(u - i0, g.lp, st.w[0], st.g[0]);
+  Rule::weights(u - i0, Rule::half_width(g.lp, F(0, 0)), st.w[0], st.g[0]);
   for (int a = 0; a < S; ++a) {
     st.column[a] = wrap(i0 + a, g.nx);
     st.g[0][a] *= g.inv_h;
   }
   const double v = (x[1] - g.y_min) * g.inv_h;
   st.row0 = Rule::base(v);
-  Rule::weights(v - st.row0, g.lp, st.w[1], st.g[1]);
+  Rule::weights(v - st.row0, Rule::half_width(g.lp, F(1, 1)), st.w[1], st.g[1]);
   for (int b = 0; b < S; ++b) st.g[1][b] *= g.inv_h;
   if constexpr (D == 3) {
     const double z = x[2] * g.inv_h;
     const int k0 = Rule::base(z);
-    Rule::weights(z - k0, g.lp, st.w[2], st.g[2]);
+    Rule::weights(z - k0, Rule::half_width(g.lp, F(2, 2)), st.w[2], st.g[2]);
     for (int c = 0; c < S; ++c) {
       st.layer[c] = wrap(k0 + c, g.nz);
       st.g[2][c] *= g.inv_h;
@@ -73,7 +77,12 @@ template <class Rule, int S, int D>
   return st;
 }
 
-struct LinearRule {
+// Rules without a point domain ignore its half-width.
+struct PointRule {
+  static double half_width(double, double) { return 0.0; }
+};
+
+struct LinearRule : PointRule {
   static int base(double u) { return floor_index(u); }
   static void weights(double d, double, double* w, double* dw) {  // d in [0, 1)
     w[0] = 1.0 - d;
@@ -85,6 +94,9 @@ struct LinearRule {
 
 struct GimpRule {
   static int base(double u) { return floor_index(u + 0.5) - 1; }
+  // cpGIMP: the initial half-width lp0 (cells) stretched by F_aa, at most 1/2 so that the domain
+  // stays within the 3 nodes (a point stretched past twice its size is held at half a cell).
+  static double half_width(double lp0, double F_aa) { return std::min(0.5, lp0 * std::abs(F_aa)); }
   // The uGIMP weight of a node at distance r (cells) from a point of half-width lp <= 1/2.
   static void node(double r, double lp, double& w, double& dw) {
     const double a = std::abs(r), sign = r < 0.0 ? -1.0 : 1.0;
@@ -109,7 +121,7 @@ struct GimpRule {
   }
 };
 
-struct QuadraticBSplineRule {
+struct QuadraticBSplineRule : PointRule {
   static int base(double u) { return floor_index(u - 0.5); }
   static void weights(double d, double, double* w, double* dw) {  // d in [0.5, 1.5)
     w[0] = 0.5 * (1.5 - d) * (1.5 - d);
@@ -132,9 +144,15 @@ struct TensorShape {
   static int first_row(double y, const GridGeometry<D>& g) {
     return Rule::base((y - g.y_min) * g.inv_h);
   }
+  // The stencil of a point at x with deformation gradient F (only GIMP's domain uses F).
   template <int D>
-  [[gnu::always_inline]] static Stencil<S, D> at(const Vec<D>& x, const GridGeometry<D>& g) {
-    return detail::tensor_stencil<Rule, S, D>(x, g);
+  [[gnu::always_inline]] static Stencil<S, D> at(const Vec<D>& x, const GridGeometry<D>& g, const Mat<D>& F) {
+    return detail::tensor_stencil<Rule, S, D>(x, g, F);
+  }
+  // ... of an undeformed point.
+  template <int D>
+  static Stencil<S, D> at(const Vec<D>& x, const GridGeometry<D>& g) {
+    return detail::tensor_stencil<Rule, S, D>(x, g, Mat<D>::identity());
   }
 };
 

@@ -23,7 +23,7 @@ template <int D>
 struct Kernels {
   bool (*bin)(StripBins&, const Particles<D>&, const GridGeometry<D>&);
   void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&);
-  void (*velocity_to_points)(Particles<D>&, const StripBins&, Grid<D>&, double dt);
+  void (*velocity_to_points)(Particles<D>&, const StripBins&, Grid<D>&, double dt, double flip_fraction);
   std::size_t (*gradient_work_and_move)(Particles<D>&, const Grid<D>&, const std::vector<Vec<D>>& u, double dt);
   StressUpdateResult (*update_points)(Particles<D>&, const Model&, double dt);
 };
@@ -33,6 +33,9 @@ struct Clock {
   double time = 0.0;
   std::int64_t steps = 0;
   double max_signal = 0.0;  // fastest signal of the last step; sets the next time step
+  // Running sum over steps and points of m (work - own trapezoid work): the internal energy the
+  // points hold beyond what their own deformation did on them [J] (constitutive.hpp).
+  double work_mismatch = 0.0;
 };
 
 template <int D>

@@ -14,8 +14,9 @@ class HugoniotTemperature {
  public:
   HugoniotTemperature() = default;
   // Tabulates T_H on J in [J_min, 1] with `intervals` equal steps, J_min close to the Hugoniot's
-  // limiting compression 1 - 1/s. For J >= 1 (tension) T_H = T0: the cold branch of P_H is linear
-  // and carries no heating, so expansion changes T only through E - E_H.
+  // limiting compression 1 - 1/s. For J >= 1 (tension) the reference curve is the linear branch
+  // P_H = rho0 c0^2 eta, on which the Walsh-Christian equation has no shock-heating term (s = 0):
+  // T_H = T0 exp(gamma0 (1 - J)), the isentrope, continuous with its slope at J = 1.
   HugoniotTemperature(const Material& mat, int intervals = 4096);
 
   double hugoniot_temperature(double J) const;
@@ -29,7 +30,7 @@ class HugoniotTemperature {
 
  private:
   MieGruneisen eos_;
-  double cv_ = 880.0, T0_ = 300.0;
+  double cv_ = 880.0, T0_ = 300.0, gamma0_ = 1.96;
   double J_min_ = 0.0, dJ_ = 0.0;
   std::vector<double> table_;  // table_[k] = T_H(1 - k dJ)
 };

@@ -175,24 +175,64 @@ inline StrainRate<3> strain_rate(const Mat<3>& L) {
           0.5 * (L(2, 0) - L(0, 2))};
 }
 
-// W a - a W for a deviator a and the spin W of D: the rotation part of the Jaumann rate,
-// a_dot = a_jaumann + (W a - a W). Stays symmetric and trace-free.
-inline Deviator<2> spin_rate(const Deviator<2>& a, const StrainRate<2>& D) {
-  const double w = D.spin;
-  return {2.0 * w * a.xy, -2.0 * w * a.xy, w * (a.yy - a.xx)};
+// The rotation of a step with spin W: the Hughes-Winget (Cayley) form
+// R = (I - W dt/2)^-1 (I + W dt/2), orthogonal for any dt (a rotated tensor keeps its norm to
+// round-off) and second-order accurate against exp(W dt) (its angle is 2 atan(w dt/2)). The
+// forward-Euler rate a += dt (W a - a W) would grow ||a|| by sqrt(1 + 4 (w dt)^2) every step.
+template <int D>
+struct Rotation;
+
+template <>
+struct Rotation<2> {
+  double c, s;  // R = [[c, s], [-s, c]]; no rotation about anything but z in plane strain
+};
+template <>
+struct Rotation<3> {
+  double r[3][3];
+};
+
+inline Rotation<2> spin_rotation(const StrainRate<2>& D, double dt) {
+  const double t = 0.5 * dt * D.spin, inv = 1.0 / (1.0 + t * t);
+  return {(1.0 - t * t) * inv, 2.0 * t * inv};
 }
-inline Deviator<3> spin_rate(const Deviator<3>& a, const StrainRate<3>& D) {
-  // W = [[0, wxy, -wzx], [-wxy, 0, wyz], [wzx, -wyz, 0]] (W_xz = -W_zx); a symmetric.
-  const double W[3][3] = {{0.0, D.w_xy, -D.w_zx}, {-D.w_xy, 0.0, D.w_yz}, {D.w_zx, -D.w_yz, 0.0}};
+inline Rotation<3> spin_rotation(const StrainRate<3>& D, double dt) {
+  // A = W dt/2 is skew; (I - A)^-1 (I + A) = I + 2/(1 + |a|^2) (A + A^2), |a|^2 = ||A||_F^2 / 2.
+  const double h = 0.5 * dt;
+  const double A[3][3] = {{0.0, h * D.w_xy, -h * D.w_zx}, {-h * D.w_xy, 0.0, h * D.w_yz}, {h * D.w_zx, -h * D.w_yz, 0.0}};
+  const double a2 = h * h * (D.w_xy * D.w_xy + D.w_yz * D.w_yz + D.w_zx * D.w_zx);
+  const double k = 2.0 / (1.0 + a2);
+  Rotation<3> R;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double A2 = 0.0;
+      for (int m = 0; m < 3; ++m) A2 += A[i][m] * A[m][j];
+      R.r[i][j] = (i == j ? 1.0 : 0.0) + k * (A[i][j] + A2);
+    }
+  return R;
+}
+
+// R a R^T: a deviator carried along by the material's rotation (the Jaumann rate's spin part).
+inline Deviator<2> rotate(const Deviator<2>& a, const Rotation<2>& R) {
+  const double cc = R.c * R.c, ss = R.s * R.s, cs = R.c * R.s;
+  return {cc * a.xx + 2.0 * cs * a.xy + ss * a.yy, ss * a.xx - 2.0 * cs * a.xy + cc * a.yy,
+          cs * (a.yy - a.xx) + (cc - ss) * a.xy};
+}
+inline Deviator<3> rotate(const Deviator<3>& a, const Rotation<3>& R) {
   const double A[3][3] = {{a.xx, a.xy, a.zx()}, {a.xy, a.yy, a.yz()}, {a.zx(), a.yz(), a.zz()}};
-  double R[3][3];
+  double RA[3][3], out[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       double s = 0.0;
-      for (int k = 0; k < 3; ++k) s += W[i][k] * A[k][j] - A[i][k] * W[k][j];
-      R[i][j] = s;
+      for (int m = 0; m < 3; ++m) s += R.r[i][m] * A[m][j];
+      RA[i][j] = s;
     }
-  return {R[0][0], R[1][1], R[0][1], R[1][2], R[2][0]};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double s = 0.0;
+      for (int m = 0; m < 3; ++m) s += RA[i][m] * R.r[j][m];
+      out[i][j] = s;
+    }
+  return {out[0][0], out[1][1], out[0][1], out[1][2], out[2][0]};
 }
 
 }  // namespace mpmshock

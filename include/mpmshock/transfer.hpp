@@ -44,7 +44,7 @@ template <int D, class Shape, bool Strength>
 void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g) {
   const GridGeometry<D>& geo = g.geo;
   bins.scatter([&](std::size_t p) {
-    const auto st = Shape::at(pts.x[p], geo);
+    const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
     const double m = pts.m[p], V = pts.volume(p);
     Vec<D> mv;
     for (int d = 0; d < D; ++d) mv[d] = m * pts.v[p][d];
@@ -71,19 +71,36 @@ void update_grid_momentum(Grid<D>& g, RowRange rows, double dt);
 template <int D>
 void remap_grid_velocity(Grid<D>& g, RowRange rows);
 
-// G2P of the FLIP velocity increment. With Remap (MUSL), also scatters m_p v_p^{n+1} back to the
-// nodes at the same stencil.
-template <int D, class Shape, bool Remap>
-void grid_to_particles_velocity(Particles<D>& pts, const StripBins& bins, Grid<D>& g, double dt) {
+// G2P of the point velocity. FLIP: v_p += dt sum N a_i. With Blend, v_p = f v_FLIP + (1 - f) v_PIC,
+// v_PIC = sum N v_i^{n+1}: the PIC part damps point-to-point velocity noise. The kinetic energy it
+// takes from a point, (|v_FLIP|^2 - |v_p|^2) / 2 per unit mass, is added to the point's internal
+// energy (the dissipation becomes heat where it happens), so total energy stays conserved to
+// about 1e-4 (not to round-off: the MUSL re-map then carries the blended velocities, which the
+// exact-work identity of velocity_gradient_work_and_move assumes are FLIP's). With Remap (MUSL),
+// also scatters m_p v_p^{n+1} back to the nodes at the same stencil.
+template <int D, class Shape, bool Remap, bool Blend>
+void grid_to_particles_velocity(Particles<D>& pts, const StripBins& bins, Grid<D>& g, double dt,
+                                [[maybe_unused]] double flip_fraction) {
   const GridGeometry<D>& geo = g.geo;
   auto kernel = [&](std::size_t p) {
-    const auto st = Shape::at(pts.x[p], geo);
-    Vec<D> acc{};
+    const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
+    Vec<D> acc{}, pic{};
     for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
       for (int d = 0; d < D; ++d) acc[d] += N * g.a[i][d];
+      if constexpr (Blend)
+        for (int d = 0; d < D; ++d) pic[d] += N * g.v[i][d];
     });
     Vec<D>& v = pts.v[p];
     for (int d = 0; d < D; ++d) v[d] = v[d] + dt * acc[d];
+    if constexpr (Blend) {
+      double k_flip = 0.0, k_blend = 0.0;
+      for (int d = 0; d < D; ++d) {
+        k_flip += v[d] * v[d];
+        v[d] = flip_fraction * v[d] + (1.0 - flip_fraction) * pic[d];
+        k_blend += v[d] * v[d];
+      }
+      pts.E[p] += 0.5 * (k_flip - k_blend);  // the kinetic energy PIC took from the point, as its heat
+    }
     if constexpr (Remap) {
       Vec<D> mv;
       for (int d = 0; d < D; ++d) mv[d] = pts.m[p] * v[d];
@@ -124,7 +141,7 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, const Grid<D>& g,
   std::size_t first_out = kNoPoint;
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(min : first_out)
   for (std::size_t p = 0; p < pts.size(); ++p) {
-    const auto st = Shape::at(pts.x[p], geo);
+    const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
     Mat<D> L{};  // L[u]
     Mat<D> A{};  // L[v^n + u], twice the averaged gradient
     Vec<D> vel{};

@@ -62,12 +62,15 @@ struct VonMises {
     return deps_p;
   }
 
-  // One step of the deviatoric stress: the Jaumann rate s_dot = 2 G D' + (W s - s W) (the back
-  // stress rotates with the material too), then the radial return.
+  // One step of the deviatoric stress by the Jaumann rate s_dot = 2 G D' + (W s - s W): the stress
+  // is rotated with the material by the step's rotation R (tensor.hpp, Hughes-Winget), then the
+  // elastic increment added, s_trial = R s R^T + 2 G D' dt; the back stress rotates too; then the
+  // radial return.
   template <int D>
   void update(Deviator<D>& s, Deviator<D>& alpha, double& eps_p, const StrainRate<D>& rate, double dt) const {
-    s = s + dt * ((2.0 * shear_modulus) * rate.deviator() + spin_rate(s, rate));
-    if constexpr (BackStress) alpha = alpha + dt * spin_rate(alpha, rate);
+    const Rotation<D> R = spin_rotation(rate, dt);
+    s = rotate(s, R) + (dt * 2.0 * shear_modulus) * rate.deviator();
+    if constexpr (BackStress) alpha = rotate(alpha, R);
     return_map(s, alpha, eps_p);
   }
 };

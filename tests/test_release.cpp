@@ -1,0 +1,72 @@
+// Isentropic release of a shocked block: no shock, no viscosity, no strength, so the exact flow
+// keeps every point on its isentrope. With gamma/V constant and c_v constant the isentrope is
+// T exp(gamma0 J) = const (test_temperature checks that), so theta = T exp(gamma0 (J - J0)) stays at
+// its initial value and any rise of its mean is heat the discretisation made.
+//
+// The block is 400 um of aluminium in the Hugoniot state at J0 = 0.85 (18 GPa, T_H 489 K),
+// translating at 500 m/s, released from both free surfaces for 120 ns (10 um cells, 2 x 2 points
+// per cell). Measured spurious heating: bspline2 39 K, cpGIMP 12 K; uniform GIMP (half-width fixed
+// while the point is compressed) gave 137 K and bilinear cells 198 K, hence cpGIMP.
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "check.hpp"
+#include "mpmshock/eos.hpp"
+#include "mpmshock/setup.hpp"
+#include "mpmshock/simulation.hpp"
+#include "mpmshock/temperature.hpp"
+
+using namespace mpmshock;
+
+namespace {
+
+double spurious_heating(const std::string& shape) {
+  const double J0 = 0.85;
+  const Scene scene = parse_scene(
+      "velocity = 500 m/s\nporosity = 1\nwidth = 40 um\ntarget_height = 200 um\nflyer_height = 200 um\n"
+      "cell_size = 10 um\nend_time = 120 ns\nplasticity = off\nartificial_viscosity = off\nshape_function = " +
+          shape + "\n",
+      "release");
+  InitialState<2> initial = build_initial_state<2>(scene);
+  Particles<2>& p = initial.particles;
+  const double E0 = MieGruneisen(scene.material).hugoniot_energy(J0);
+  for (std::size_t q = 0; q < p.size(); ++q) {  // one block, uniformly compressed along y, moving up
+    p.v[q] = Vec<2>{{0.0, 500.0}};
+    p.x[q][1] *= J0;
+    p.F[q](1, 1) = J0;
+    p.E[q] = E0;
+  }
+  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
+  const HugoniotTemperature thermal(scene.material);
+  const double gamma0 = scene.material.gruneisen_gamma;
+  auto mean_theta = [&] {
+    const Particles<2>& pts = sim.particles();
+    double sum = 0.0;
+    for (std::size_t q = 0; q < pts.size(); ++q)
+      sum += thermal.temperature(pts.J(q), pts.E[q]) * std::exp(gamma0 * (pts.J(q) - J0));
+    return sum / static_cast<double>(pts.size());
+  };
+  const double before = mean_theta();
+  CHECK_NEAR(before, thermal.hugoniot_temperature(J0), 1e-9);
+  while (sim.time() < scene.end_time) {
+    const StepStatus s = sim.step(std::min(sim.stable_time_step(), scene.end_time - sim.time()));
+    if (s.code != StepStatus::Code::ok) {
+      std::printf("%s: %s\n", shape.c_str(), sim.describe(s).c_str());
+      CHECK(false);
+      return 1e9;
+    }
+  }
+  const double heating = mean_theta() - before;
+  std::printf("%-9s spurious heating %.2f K in 120 ns\n", shape.c_str(), heating);
+  return heating;
+}
+
+}  // namespace
+
+int main() {
+  CHECK(spurious_heating("gimp") < 20.0);
+  CHECK(spurious_heating("bspline2") < 50.0);
+  spurious_heating("bilinear");  // reported, not bounded: bilinear cells are noisy (README, "Method")
+  return check::result();
+}
