@@ -21,6 +21,22 @@ Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append)
 }
 
 template <int D>
+void Outputs<D>::follow(Probes<D> probes, double start_time, bool append) {
+  probes_ = std::move(probes);
+  if (probes_.empty()) return;
+  probes_file_ = open_output(dir_ / "probes.csv", append ? "a" : "w");
+  if (!append) std::fprintf(probes_file_.get(), "%s\n", kProbesHeader);
+  next_probe_ = append ? probes_.next_after(start_time) : start_time;
+}
+
+template <int D>
+void Outputs<D>::write_probe_rows(const Simulation<D>& sim) {
+  const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
+  probes_.write_rows(probes_file_.get(), sim.time(), sim.particles(), thermal);
+  next_probe_ = probes_.next_after(sim.time());
+}
+
+template <int D>
 void Outputs<D>::sample(const Simulation<D>& sim, double dt) {
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   write_region_rows(regions_.get(), sim.time(), sample_regions(sim.particles(), scene_.regions, thermal,
@@ -31,6 +47,7 @@ void Outputs<D>::sample(const Simulation<D>& sim, double dt) {
   for (int d = 0; d < D; ++d) std::fprintf(conservation_.get(), "%.12g,", t.momentum[d]);
   std::fprintf(conservation_.get(), "%.12g,%.12g,%.12g,%.12g\n", t.kinetic, t.internal, t.total_energy(),
                sim.clock().work_mismatch);
+  if (probes_file_) flush_or_throw(probes_file_.get(), "probes.csv");
   flush_or_throw(regions_.get(), "regions.csv");
   flush_or_throw(conservation_.get(), "conservation.csv");
 }

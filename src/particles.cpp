@@ -10,6 +10,7 @@ void for_each_field(P& p, F&& f) {
   f(p.x), f(p.v), f(p.m), f(p.V0), f(p.F), f(p.L), f(p.work), f(p.E), f(p.P), f(p.q), f(p.id), f(p.body);
   if (p.has_strength()) f(p.s), f(p.eps_p);
   if (p.has_back_stress()) f(p.alpha);
+  if (p.has_failure()) f(p.failure_J);
 }
 
 }  // namespace
@@ -29,6 +30,7 @@ void Particles<D>::add(const Vec<D>& position, const Vec<D>& velocity, double ma
     eps_p.push_back(0.0);
   }
   if (back_stress_) alpha.push_back({});
+  if (failure_) failure_J.push_back(0.0);
   body.push_back(b);
 }
 
@@ -39,6 +41,12 @@ void Particles<D>::enable_strength(bool on, bool back_stress) {
   s.assign(strength_ ? size() : 0, {});
   eps_p.assign(strength_ ? size() : 0, 0.0);
   alpha.assign(back_stress_ ? size() : 0, {});
+}
+
+template <int D>
+void Particles<D>::enable_failure(bool on) {
+  failure_ = on;
+  failure_J.assign(on ? size() : 0, 0.0);
 }
 
 template <int D>

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "mpmshock/outputs.hpp"
+#include "mpmshock/probes.hpp"
 #include "mpmshock/regions.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/setup.hpp"
@@ -21,7 +22,7 @@ const std::set<std::string>& restart_changeable_keys() {
   static const std::set<std::string> keys = {
       "end_time",      "cfl",        "sample_interval", "snapshot_interval", "snapshot_compression",
       "snapshot_grid", "output_dir", "av_linear",       "av_quadratic",      "artificial_viscosity",
-      "update_scheme", "thermal",  "flip_fraction"};
+      "update_scheme", "thermal",  "flip_fraction", "probe_interval"};
   return keys;
 }
 
@@ -38,12 +39,12 @@ void check_csv_header(const fs::path& path, const std::string& expected, const s
 void check_restart_overrides(const std::string& snapshot, const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) {
     const std::string key = override_key(o);
-    if (key.rfind("region.", 0) == 0 || restart_changeable_keys().count(key)) continue;
+    if (key.rfind("region.", 0) == 0 || key.rfind("probe.", 0) == 0 || restart_changeable_keys().count(key)) continue;
     std::string allowed;
     for (const std::string& k : restart_changeable_keys()) allowed += k + ", ";
     throw SceneError("--set " + o + ": key '" + key + "': cannot change on restart from " + snapshot +
                      " (the bodies, grid and material are part of the saved state); restart may change " + allowed +
-                     "and region.* keys");
+                     "and region.* and probe.* keys");
   }
 }
 
@@ -53,7 +54,7 @@ std::vector<std::string> state_lines(const std::string& resolved) {
   std::istringstream in(resolved);
   for (std::string line; std::getline(in, line);) {
     const std::string key = override_key(line);
-    if (key.rfind("region.", 0) == 0 || restart_changeable_keys().count(key)) continue;
+    if (key.rfind("region.", 0) == 0 || key.rfind("probe.", 0) == 0 || restart_changeable_keys().count(key)) continue;
     out.push_back(line);
   }
   return out;
@@ -117,11 +118,8 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
   const std::size_t n = p.size();
   if (n != material) bad("it holds " + std::to_string(n) + " points, its bodies " + std::to_string(material));
 
-  std::vector<bool> seen(n, false);
-  for (std::size_t q = 0; q < n; ++q) {
-    if (p.id[q] >= n || seen[p.id[q]]) bad("its point ids are not a numbering of its points");
-    seen[p.id[q]] = true;
-  }
+  for (std::size_t q = 0; q < n; ++q)  // snapshots hold points in id order, and restarts rely on it
+    if (p.id[q] != q) bad("its point ids are not a numbering of its points in order");
   const Model model(scene);
   const double J_min = model.limiting_compression();
   auto finite = [](const auto& values) {
@@ -129,8 +127,13 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
     const std::size_t count = values.size() * sizeof(values[0]) / sizeof(double);
     return std::all_of(d, d + count, [](double v) { return std::isfinite(v); });
   };
-  for (const auto* field : {&p.m, &p.V0, &p.E, &p.P, &p.q, &p.eps_p})
+  for (const auto* field : {&p.m, &p.V0, &p.E, &p.P, &p.q, &p.eps_p, &p.failure_J})
     if (!finite(*field)) bad("it holds a value that is not a finite number (NaN or infinity)");
+  if (p.has_failure() != scene.effects.spall)
+    bad(std::string("its scene has spall = ") + (scene.effects.spall ? "on" : "off") + " but it holds " +
+        (p.has_failure() ? "" : "no ") + "failure state");
+  if (std::any_of(p.failure_J.begin(), p.failure_J.end(), [](double j) { return j < 0.0; }))
+    bad("it holds a negative failure_J");
   if (!finite(p.x) || !finite(p.v) || !finite(p.F) || !finite(p.L) || !finite(p.s) || !finite(p.alpha))
     bad("it holds a value that is not a finite number (NaN or infinity)");
   std::visit(
@@ -179,6 +182,7 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
     check_same_run(snapshot, parse_scene(r.run.scene_text, snapshot + " (scene)"), dir);
     check_csv_header(dir / "regions.csv", kRegionsHeader, snapshot);
     check_csv_header(dir / "conservation.csv", conservation_header(D), snapshot);
+    check_csv_header(dir / "probes.csv", kProbesHeader, snapshot);
     // Later snapshots and rows belong to the continuation this restart replaces.
     std::vector<fs::path> later;
     for (const auto& e : fs::directory_iterator(dir))
@@ -194,6 +198,7 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
     for (const fs::path& p : later) fs::remove(p);
     truncate_rows_after(dir / "regions.csv", t0);
     truncate_rows_after(dir / "conservation.csv", t0);
+    truncate_rows_after(dir / "probes.csv", t0);
     append = fs::exists(dir / "regions.csv") && fs::exists(dir / "conservation.csv");
     for (int k = 0; k <= index; ++k) {
       const fs::path p = dir / snapshot_name(k);
@@ -212,6 +217,11 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
 
   Simulation<D> sim(scene, grid, std::move(r.points), r.run.clock);
   Outputs<D> out(scene, dir, append);
+  if (!scene.probes.empty()) {  // resolved on the initial state, as the run did
+    const InitialState<D> initial = build_initial_state<D>(scene);
+    out.follow(Probes<D>(scene, initial.particles, initial.grid.width()), sim.time(),
+               append && fs::exists(dir / "probes.csv"));
+  }
   out.keep_listing(std::move(earlier));
   // Resume the output schedule from the snapshot's time, by the rule the loop itself uses.
   resume_schedule(r.run.schedule, scene, t0, 1e-9 * r.run.schedule.last_dt);

@@ -23,6 +23,7 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
   run.target = initial.target;
   run.flyer = initial.flyer;
   run.initial = compute_totals(initial.particles);
+  Probes<D> probes(scene, initial.particles, initial.grid.width());
   Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
 
   const fs::path dir(scene.output_dir);
@@ -30,6 +31,8 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
   write_text(dir / "scene.txt", run.scene_text);
   write_voids(dir / "voids.csv", run.flyer, run.target);
   Outputs<D> out(scene, dir, false);
+  out.follow(std::move(probes), sim.time(), false);
+  out.probe(sim);
   out.sample(sim, 0.0);
   run.clock = sim.clock();
   out.snapshot(sim, run);

@@ -259,6 +259,12 @@ const std::vector<Key>& keys() {
     k.push_back(flag("thermal", "on",
                      "the paper's temperature T = T_H(V) + (E - E_H)/c_v; off: no temperature is computed",
                      FIELD(effects.thermal)));
+    k.push_back(flag("spall", "off",
+                     "failure in tension: a point whose largest principal stress exceeds spall_strength carries "
+                     "no tension or shear from then on, so material separates",
+                     FIELD(effects.spall)));
+    k.push_back(quantity("spall_strength", D::pressure, Range{0.0, 1e12, true, false}, "1.2 GPa",
+                         "spall strength (aluminium alloys: 1.0-1.6 GPa at 1e4-1e6 /s)", FIELD(spall_strength)));
     k.push_back(flag("artificial_viscosity", "on", "shock-capturing bulk viscosity in compression",
                      FIELD(effects.artificial_viscosity)));
     // Material (the paper's aluminium)
@@ -295,6 +301,8 @@ const std::vector<Key>& keys() {
     k.push_back(quantity("snapshot_interval", D::time, non_negative(), "100 ns",
                          "simulated time between HDF5 snapshots; 0: only the first and the last",
                          FIELD(snapshot_interval)));
+    k.push_back(quantity("probe_interval", D::time, non_negative(), "0 s",
+                         "time between rows of probes.csv (probe.NAME keys); 0: every step", FIELD(probe_interval)));
     k.push_back(integer("snapshot_compression", closed(0, 9), "0",
                         "gzip level for every snapshot field (slower, ~1/3 smaller); 0: only id, body, mass",
                         FIELD(snapshot_compression)));
@@ -424,6 +432,38 @@ RegionSpec parse_region(const Entry& e) {
     throw error_at(e.at, e.key, "expected 'bottom Y1 HEIGHT', 'top HEIGHT' or 'band Y1 Y2', got '" + e.value + "'");
   }
   return r;
+}
+
+// A probe key: probe.NAME = surface | point X Y.
+ProbeSpec parse_probe(const Entry& e) {
+  ProbeSpec p;
+  p.name = e.key.substr(std::string("probe.").size());
+  if (p.name.empty()) throw error_at(e.at, e.key, "a probe needs a name: probe.NAME = ...");
+  std::istringstream words(e.value);
+  std::vector<std::string> w;
+  for (std::string t; words >> t;) w.push_back(t);
+  std::vector<std::string> args;  // "100 um" style: a unit word joins the number before it
+  for (std::size_t i = 1; i < w.size(); ++i) {
+    const bool starts_numeric = std::isdigit(static_cast<unsigned char>(w[i][0])) || w[i][0] == '.' ||
+                                w[i][0] == '-' || w[i][0] == '+';
+    if (!starts_numeric && !args.empty()) args.back() += " " + w[i];
+    else args.push_back(w[i]);
+  }
+  const std::string kind = w.empty() ? "" : w[0];
+  if (kind == "surface" && args.empty()) {
+    p.kind = ProbeSpec::Kind::surface;
+  } else if (kind == "point" && args.size() == 2) {
+    p.kind = ProbeSpec::Kind::point;
+    try {
+      p.x = parse_quantity(args[0], Dimension::length);
+      p.y = parse_quantity(args[1], Dimension::length);
+    } catch (const std::invalid_argument& ex) {
+      throw error_at(e.at, e.key, ex.what());
+    }
+  } else {
+    throw error_at(e.at, e.key, "expected 'surface' or 'point X Y', got '" + e.value + "'");
+  }
+  return p;
 }
 
 // Lines of a scene file as entries; syntax errors name the file and line.
@@ -602,21 +642,27 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
       regions.push_back(parse_region(e));
       continue;
     }
+    if (key.rfind("probe.", 0) == 0) {
+      scene.probes.push_back(parse_probe(e));
+      continue;
+    }
     const Key* k = find_key(key);
     if (!k) throw error_at(e.at, key, "unknown key" + did_you_mean(key));
     if (k->kind == Kind::text && key == "output_dir") check_path(e.at, key, e.value);
     if (k->default_text == "auto" && e.value == "auto") continue;
     k->set(scene, e.value, e.at);
   }
-  // Regions in the order the file lists them, not alphabetical.
+  // Regions and probes in the order the file lists them, not alphabetical.
+  const auto line_of = [&](const std::string& key) {
+    const std::string& w = by_key.at(key).at.where;
+    const auto c = w.rfind(':');
+    return c == std::string::npos ? 1 << 30 : std::atoi(w.c_str() + c + 1);
+  };
   std::sort(regions.begin(), regions.end(), [&](const RegionSpec& x, const RegionSpec& y) {
-    const auto& ax = by_key.at("region." + x.name).at.where;
-    const auto& ay = by_key.at("region." + y.name).at.where;
-    const auto line = [](const std::string& w) {
-      const auto c = w.rfind(':');
-      return c == std::string::npos ? 1 << 30 : std::atoi(w.c_str() + c + 1);
-    };
-    return line(ax) < line(ay);
+    return line_of("region." + x.name) < line_of("region." + y.name);
+  });
+  std::sort(scene.probes.begin(), scene.probes.end(), [&](const ProbeSpec& x, const ProbeSpec& y) {
+    return line_of("probe." + x.name) < line_of("probe." + y.name);
   });
   scene.regions = regions.empty() ? paper_regions() : regions;
 
@@ -661,6 +707,12 @@ std::string resolved_scene(const Scene& scene) {
     }
     out += "\n";
   }
+  for (const ProbeSpec& p : scene.probes) {
+    out += "probe." + p.name + " = ";
+    if (p.kind == ProbeSpec::Kind::surface) out += "surface";
+    else out += "point " + format_number(p.x) + " m " + format_number(p.y) + " m";
+    out += "\n";
+  }
   return out;
 }
 
@@ -684,6 +736,8 @@ std::string key_reference_markdown() {
   }
   out += "| `region.NAME` | m | B800, B400, B100, T800, T400, T100 | `bottom Y1 H`, `top H` or `band Y1 Y2`; "
          "a scene that names regions replaces the defaults |\n";
+  out += "| `probe.NAME` | m | none | `surface` (the target's free surface: its top cell of points at t = 0) or "
+         "`point X Y` (the material point nearest to X Y at t = 0), followed through the run into probes.csv |\n";
   return out;
 }
 

@@ -41,6 +41,7 @@ SizeEstimate estimate_size(const Scene& s) {
   Particles<D> sample;
   const StrengthLaw strength = strength_of(s);
   sample.enable_strength(has_stress(strength), has_back_stress(strength));
+  sample.enable_failure(s.effects.spall);
   e.point_bytes = e.points * static_cast<double>(sample.bytes_per_point() + StripBins::kBytesPerPoint);
   e.node_bytes = e.nodes * static_cast<double>(Grid<D>::bytes_per_node());
   return e;
@@ -119,6 +120,7 @@ InitialState<2> build_initial_state<2>(const Scene& s) {
   const std::size_t n = target.size() + flyer.size() - target_voids.removed_count - flyer_voids.removed_count;
   const StrengthLaw strength = strength_of(s);
   st.particles.enable_strength(has_stress(strength), has_back_stress(strength));
+  st.particles.enable_failure(s.effects.spall);
   st.particles.reserve(n);
   add_points(st.particles, flyer, flyer_voids, +s.velocity, s.material.density, Body::flyer);
   add_points(st.particles, target, target_voids, -s.velocity, s.material.density, Body::target);

@@ -17,7 +17,7 @@ bool bin_points(StripBins& bins, const Particles<D>& pts, const GridGeometry<D>&
 
 // The kernels for one choice of shape function and laws: every combination the variants of
 // model.hpp allow is instantiated by std::visit, none is listed by hand.
-template <int D, class Shape, class Eos, class Strength, class Viscosity>
+template <int D, class Shape, class Eos, class Strength, class Viscosity, class Failure>
 Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction) {
   constexpr bool stress = Strength::has_stress;
   Kernels<D> k{};
@@ -29,18 +29,19 @@ Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction) {
                               : (blend ? grid_to_particles_velocity<D, Shape, false, true>
                                        : grid_to_particles_velocity<D, Shape, false, false>);
   k.gradient_work_and_move = velocity_gradient_work_and_move<D, Shape, stress>;
-  k.update_points = update_all_points<D, Eos, Strength, Viscosity>;
+  k.update_points = update_all_points<D, Eos, Strength, Viscosity, Failure>;
   return k;
 }
 
 template <int D>
 Kernels<D> kernels_for(const Model& m) {
   return std::visit(
-      [&](auto shape, const auto& eos, const auto& strength, const auto& viscosity) {
+      [&](auto shape, const auto& eos, const auto& strength, const auto& viscosity, const auto& failure) {
         return kernels_for<D, decltype(shape), std::decay_t<decltype(eos)>, std::decay_t<decltype(strength)>,
-                           std::decay_t<decltype(viscosity)>>(m.scheme, m.flip_fraction);
+                           std::decay_t<decltype(viscosity)>, std::decay_t<decltype(failure)>>(m.scheme,
+                                                                                            m.flip_fraction);
       },
-      m.shape, m.eos, m.strength, m.viscosity);
+      m.shape, m.eos, m.strength, m.viscosity, m.failure);
 }
 
 // The step effects a model calls for, in the order their slots run.
@@ -136,7 +137,7 @@ std::string Simulation<D>::describe(const StepStatus& status) const {
       break;
     case StepStatus::Code::below_zero_kelvin:
       out << "material point " << pts.id[p] << " reached a non-physical state (temperature "
-          << model_.thermal->temperature(J, pts.E[p]) << " K: its internal energy " << pts.E[p]
+          << model_.thermal->temperature(pts.material_J(p), pts.E[p]) << " K: its internal energy " << pts.E[p]
           << " J/kg is below the 0 K isotherm at J = " << J << "); at ";
       print_vector(out, pts.x[p]);
       out << " m with pressure " << pts.P[p] << " Pa. Typical cause: a shock without enough artificial viscosity";

@@ -67,7 +67,7 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
   doubles("density", scalar.data(), {N}, "kg/m3", "density of the material point", chosen);
   doubles("pressure", p.P.data(), {N}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)", chosen);
   doubles("viscous_pressure", p.q.data(), {N}, "Pa", "artificial viscous pressure q", chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->temperature(p.J(q), p.E[q]) : std::nan("");
+  for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->temperature(p.material_J(q), p.E[q]) : std::nan("");
   doubles("temperature", scalar.data(), {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
   doubles("internal_energy", p.E.data(), {N}, "J/kg", "specific internal energy, 0 at the reference state", chosen);
 
@@ -89,6 +89,8 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
           D == 2 ? "Cauchy stress s - (P + q) I, plane strain (zz non-zero)" : "Cauchy stress s - (P + q) I", chosen);
   for (std::size_t q = 0; q < n; ++q) scalar[q] = p.has_strength() ? p.eps_p[q] : 0.0;
   doubles("plastic_strain", scalar.data(), {N}, "", "effective plastic strain", chosen);
+  for (std::size_t q = 0; q < n; ++q) scalar[q] = p.failed(q) ? 1.0 : 0.0;
+  doubles("damage", scalar.data(), {N}, "", "0 intact, 1 failed in tension (spall = on; 0 without)", chosen);
   doubles("deformation_gradient", flat(p.F), {N, d, d}, "",
           D == 2 ? "F, in-plane (F_zz = 1), F[i][j] = dx_i/dX_j" : "F[i][j] = dx_i/dX_j", chosen);
   doubles("velocity_gradient", flat(p.L), {N, d, d}, "1/s", "L = grad v of the last step, L[i][j] = dv_i/dx_j",
@@ -132,6 +134,9 @@ void write_restart(hid_t file, const Particles<D>& p, const RunState& run) {
   if (p.has_strength())
     h5::write_dataset(g, "deviatoric_stress", H5T_NATIVE_DOUBLE, flat(p.s), {N, C}, "Pa",
                       (std::string("deviatoric stress s: ") + components).c_str());
+  if (p.has_failure())
+    h5::write_dataset(g, "failure_J", H5T_NATIVE_DOUBLE, p.failure_J.data(), {N}, "",
+                      "0 while intact; the volume ratio J at which the point failed in tension");
   if (p.has_back_stress())
     h5::write_dataset(g, "back_stress", H5T_NATIVE_DOUBLE, flat(p.alpha), {N, C}, "Pa",
                       (std::string("back stress alpha (kinematic hardening): ") + components).c_str());
@@ -455,6 +460,8 @@ Restart<D> read_state(const std::string& path) {
       p.eps_p = h5::read_doubles(f, "/particles/plastic_strain", n, {});
     }
     if (back) unflatten(h5::read_doubles(g, "back_stress", n, {C}), p.alpha);
+    p.enable_failure(h5::has_link(g, "failure_J"));
+    if (p.has_failure()) p.failure_J = h5::read_doubles(g, "failure_J", n, {});
     return r;
   }
 }

@@ -69,6 +69,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
     threads.record(std::chrono::duration<double>(WallClock::now() - step_start).count());
     sch.last_dt = dt;
     if (!status.ok()) break;
+    out.probe(sim);
     if (stop_signal() != 0) break;  // after a whole step, so the state is consistent
     const double tol = 1e-9 * dt;
     if (sim.time() >= event_time(sch.next_sample, scene.sample_interval) - tol) {

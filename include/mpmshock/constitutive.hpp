@@ -25,6 +25,7 @@ struct PointState {
   double E, P, q;
   Deviator<D> s, alpha;
   double eps_p;
+  double failure_J = 0.0;      // in/out with spall: 0 while intact, else the J it failed at
   double work_mismatch = 0.0;  // out: work minus the trapezoid-rule work of the point's own deformation
 };
 
@@ -44,9 +45,10 @@ inline void own_work_mismatch(PointState<D>& st, double rho0, double J_before, d
 // One point, one step. Returns the point's signal speed (for the next time step), or a negative
 // number if the new state is not physical (J <= the EOS limit, or a non-finite result). Inlined
 // into the loop over points: as a call it costs 40 % more instructions per point.
-template <int D, class Eos, class Strength, class Viscosity>
+template <int D, class Eos, class Strength, class Viscosity, class Failure = NoFailure>
 [[gnu::always_inline]] inline double update_point(PointState<D>& st, const Eos& eos, const Strength& strength,
-                                                  const Viscosity& viscosity, double h, double dt) {
+                                                  const Viscosity& viscosity, double h, double dt,
+                                                  [[maybe_unused]] const Failure& failure = {}) {
   const StrainRate<D> rate = strain_rate(st.L);
   const double J_before = det(st.F), pq_before = st.P + st.q;
   [[maybe_unused]] const Deviator<D> s_before = st.s;
@@ -62,14 +64,27 @@ template <int D, class Eos, class Strength, class Viscosity>
   st.F = product(A, st.F);
   const double J = det(st.F);
   if (!(J > eos.limiting_compression())) return -1.0;
-  const double rho = eos.rho0() / J;
+  // A failed point's material keeps the volume it failed at while the space around it opens.
+  double J_material = J;
+  if constexpr (Failure::active)
+    if (st.failure_J > 0.0) J_material = std::min(J, st.failure_J);
+  const double rho = eos.rho0() / J_material;
 
   if constexpr (Strength::has_stress) strength.update(st.s, st.alpha, st.eps_p, rate, dt);
 
   // Pressure from the new volume and energy; artificial viscosity from this step's compression rate.
-  const auto eos_state = eos.state(J, st.E);
+  const auto eos_state = eos.state(J_material, st.E);
   st.P = eos_state.pressure;
   if (!std::isfinite(st.E) || !std::isfinite(st.P)) return -1.0;
+  if constexpr (Failure::active) {
+    // Fails when its tension exceeds the strength; a failed point carries no tension, no shear.
+    if (st.failure_J == 0.0 && failure.exceeded(st.s, st.P)) st.failure_J = J;
+    if (st.failure_J > 0.0) {
+      st.P = std::max(st.P, 0.0);
+      st.s = {};
+      st.alpha = {};
+    }
+  }
   const double c2_bulk = std::max(eos_state.sound_speed_squared, 0.0);
   double c2 = c2_bulk;  // longitudinal: bulk plus shear
   if constexpr (Strength::has_stress) c2 += (4.0 / 3.0) * strength.shear_modulus / rho;
@@ -94,11 +109,12 @@ struct StressUpdateResult {
 };
 
 // The update of every point, for one choice of laws.
-template <int D, class Eos, class Strength, class Viscosity>
+template <int D, class Eos, class Strength, class Viscosity, class Failure>
 StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, double dt) {
   const Eos& eos = std::get<Eos>(model.eos);
   const Strength& strength = std::get<Strength>(model.strength);
   const Viscosity& viscosity = std::get<Viscosity>(model.viscosity);
+  const Failure& failure = std::get<Failure>(model.failure);
   double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};
   const double speed_limit2 = model.speed_limit * model.speed_limit;
@@ -113,7 +129,8 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
       st.eps_p = pts.eps_p[p];
     }
     if constexpr (Strength::has_back_stress) st.alpha = pts.alpha[p];
-    const double signal = update_point<D>(st, eos, strength, viscosity, model.cell_size, dt);
+    if constexpr (Failure::active) st.failure_J = pts.failure_J[p];
+    const double signal = update_point<D>(st, eos, strength, viscosity, model.cell_size, dt, failure);
     pts.F[p] = st.F;
     pts.E[p] = st.E;
     pts.P[p] = st.P;
@@ -123,6 +140,7 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
       pts.eps_p[p] = st.eps_p;
     }
     if constexpr (Strength::has_back_stress) pts.alpha[p] = st.alpha;
+    if constexpr (Failure::active) pts.failure_J[p] = st.failure_J;
     mismatch[p / kChunk] += pts.m[p] * st.work_mismatch;
     const double speed2 = dot(pts.v[p], pts.v[p]);
     if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;

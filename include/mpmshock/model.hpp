@@ -11,6 +11,7 @@
 #include "mpmshock/eos.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/shape.hpp"
+#include "mpmshock/spall.hpp"
 #include "mpmshock/temperature.hpp"
 #include "mpmshock/von_mises.hpp"
 
@@ -19,6 +20,7 @@ namespace mpmshock {
 using EquationOfState = std::variant<MieGruneisen>;
 using StrengthLaw = std::variant<NoStrength, VonMises<false>, VonMises<true>>;
 using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
+using FailureLaw = std::variant<NoFailure, Spall>;
 using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape>;
 
 // The strength law a scene calls for, and what it stores per point.
@@ -31,6 +33,7 @@ struct Model {
   EquationOfState eos;
   StrengthLaw strength;
   ViscosityLaw viscosity;
+  FailureLaw failure;
   std::optional<HugoniotTemperature> thermal;  // the paper's temperature model (thermal = on)
   UpdateScheme scheme;
   double flip_fraction;  // 1: pure FLIP
@@ -45,6 +48,7 @@ struct Model {
   // The shear modulus G the longitudinal sound speed sees; 0 without strength.
   double shear_modulus() const;
   bool has_strength() const { return has_stress(strength); }
+  bool has_failure() const { return std::holds_alternative<Spall>(failure); }
 };
 
 }  // namespace mpmshock

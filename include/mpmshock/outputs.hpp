@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mpmshock/probes.hpp"
 #include "mpmshock/run_directory.hpp"
 #include "mpmshock/simulation.hpp"
 #include "mpmshock/snapshot.hpp"
@@ -21,6 +22,14 @@ class Outputs {
   // Opens regions.csv and conservation.csv in `dir`: new (with headers), or appended to (restart).
   Outputs(const Scene& scene, const fs::path& dir, bool append);
 
+  // Probes to follow (probes.csv, new or appended to like the other CSVs); none: no file.
+  void follow(Probes<D> probes, double start_time, bool append);
+  // probes.csv rows when due (every step, or every probe_interval).
+  void probe(const Simulation<D>& sim) {
+    if (probes_.empty() || sim.time() < next_probe_ * (1.0 - 1e-12)) return;
+    write_probe_rows(sim);
+  }
+
   // Snapshots already in the directory that the XDMF index must keep listing (restart).
   void keep_listing(std::vector<XdmfSnapshot> earlier) { xdmf_ = XdmfIndex(xdmf_path(), std::move(earlier)); }
 
@@ -33,7 +42,10 @@ class Outputs {
   const Scene& scene_;
   fs::path dir_;
   std::string xdmf_path() const { return (dir_ / kXdmfName).string(); }
-  File regions_, conservation_;
+  void write_probe_rows(const Simulation<D>& sim);
+  File regions_, conservation_, probes_file_;
+  Probes<D> probes_;
+  double next_probe_ = 0.0;
   XdmfIndex xdmf_;
 };
 

@@ -9,9 +9,11 @@
 //   s, alpha   deviatoric stress and back stress [Pa] (with strength; alpha only with kinematic
 //              hardening)
 //   eps_p      effective plastic strain (with strength)
+//   failure_J  0 while intact; the J at which the point failed (with spall)
 //   work       the work of the last step's nodal forces on the point [J/kg] (scratch of a step)
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -29,27 +31,36 @@ struct Particles {
   std::vector<double> work, E, P, q;
   std::vector<Deviator<D>> s, alpha;
   std::vector<double> eps_p;
+  std::vector<double> failure_J;
   std::vector<std::uint32_t> id;  // stable index, the order points were created in
   std::vector<Body> body;
 
   std::size_t size() const { return x.size(); }
   bool has_strength() const { return strength_; }
   bool has_back_stress() const { return back_stress_; }
+  bool has_failure() const { return failure_; }
+  bool failed(std::size_t p) const { return failure_ && failure_J[p] > 0.0; }
 
+  // J = det F: the volume the point occupies over its reference volume.
   double J(std::size_t p) const { return det(F[p]); }
+  // The material's own volume ratio: J, except for a failed point, whose expansion beyond the J it
+  // failed at is opened space (spall.hpp). Density, pressure and temperature are the material's.
+  double material_J(std::size_t p) const { return failed(p) ? std::min(J(p), failure_J[p]) : J(p); }
   double volume(std::size_t p) const { return V0[p] * J(p); }
-  double density(std::size_t p) const { return m[p] / volume(p); }
+  double density(std::size_t p) const { return m[p] / (V0[p] * material_J(p)); }
 
   // Appends a point in its reference state (stress free, E = 0) at `position` moving at `velocity`.
   void add(const Vec<D>& position, const Vec<D>& velocity, double mass, double volume0, Body b);
   // Allocates (or drops) the strength fields s and eps_p, and the back stress alpha.
   void enable_strength(bool on, bool back_stress);
+  // Allocates (or drops) failure_J, all intact.
+  void enable_failure(bool on);
   void reserve(std::size_t n);
   // Memory this layout holds per point, for --check and the benchmarks.
   std::size_t bytes_per_point() const;
 
  private:
-  bool strength_ = false, back_stress_ = false;
+  bool strength_ = false, back_stress_ = false, failure_ = false;
 };
 
 extern template struct Particles<2>;

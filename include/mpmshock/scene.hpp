@@ -30,10 +30,21 @@ struct RegionSpec {
   double a = 0.0, b = 0.0;
 };
 
+// A probe follows material points through the run (probes.csv):
+//   surface:  the target's free surface, the points of its top cell at t = 0
+//   point:    the material point nearest to (x, y) at t = 0
+struct ProbeSpec {
+  enum class Kind { surface, point };
+  std::string name;
+  Kind kind = Kind::surface;
+  double x = 0.0, y = 0.0;
+};
+
 struct Effects {
   bool plasticity = true;            // von Mises strength; off: hydrodynamic (no deviatoric stress)
   bool thermal = true;               // the paper's temperature model
   bool artificial_viscosity = true;  // shock-capturing bulk viscosity
+  bool spall = false;                // failure in tension (spall.hpp)
 };
 
 struct Scene {
@@ -59,6 +70,7 @@ struct Scene {
   double cfl = 0.3;
   UpdateScheme update_scheme = UpdateScheme::musl;
   ShapeFunction shape_function = ShapeFunction::bspline2;
+  double spall_strength = 1.2e9;  // [Pa] tension at which a point fails (spall = on)
   double flip_fraction = 1.0;  // share of FLIP in the point velocity update; the rest is PIC
   double av_linear = 0.2;
   double av_quadratic = 2.0;
@@ -74,6 +86,8 @@ struct Scene {
   Material material;
   Effects effects;
   std::vector<RegionSpec> regions;  // the paper's six unless the scene names its own
+  std::vector<ProbeSpec> probes;    // none unless the scene names some
+  double probe_interval = 0.0;      // [s] between rows of probes.csv; 0: every step
 
   // Where each key was set ("scene.cfg:12", "--set #1 (...)"), for errors found after parsing.
   std::map<std::string, std::string> origin;

@@ -111,10 +111,11 @@ def scene_differences(resolved, requested, defaults, ignore=("output_dir",)):
     --keys default. Returns a list of 'key: have X, want Y' texts, empty when the run matches.
 
     `ignore` lists keys that only say where output goes. grid_margin = auto is derived from other
-    keys (cell_size, velocity, end_time), which are compared, so its resolved value is not."""
+    keys (cell_size, velocity, end_time), which are compared, so its resolved value is not. Probes
+    (probe.NAME, probe_interval) only add probes.csv, which nothing here reads: not compared."""
     differences = []
     keys = [key for key in dict.fromkeys([*defaults, *requested, *resolved])
-            if key not in ignore and not key.startswith("region.")]
+            if key not in ignore and not key.startswith(("region.", "probe.")) and key != "probe_interval"]
     for key in keys:
         want = requested.get(key, defaults.get(key))
         if key == "grid_margin" and want == "auto":

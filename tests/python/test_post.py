@@ -206,7 +206,7 @@ def test_reader_ignores_what_it_does_not_know(ctx):
         del f["particles/temperature"]
         f.require_group("restart").create_dataset("future_state", data=np.arange(3))
         f.require_group("future_group").create_dataset("mass", data=np.zeros((4, 4)))
-        f["particles"].create_dataset("damage", data=np.zeros(len(f["particles/id"])))
+        f["particles"].create_dataset("future_field", data=np.zeros(len(f["particles/id"])))
     (run_dir / "snapshot_00001.tmp").write_bytes(b"half-written")
     (run_dir / "snapshot_00001.h5.tmp").write_bytes(b"half-written")
     (run_dir / "snapshots.xdmf").write_text("<Xdmf/>")
