@@ -34,6 +34,10 @@ Model::Model(const Scene& s)
       // that does is a blow-up.
       speed_limit(10.0 * (2.0 * s.velocity + s.material.sound_speed)) {
   if (s.effects.thermal) thermal.emplace(s.material);
+  if (s.effects.heat_conduction && s.material.thermal_conductivity > 0.0) {
+    conductivity = s.material.thermal_conductivity;
+    diffusivity = conductivity / (s.material.density * s.material.specific_heat);
+  }
 }
 
 double Model::limiting_compression() const {

@@ -265,6 +265,10 @@ const std::vector<Key>& keys() {
                      FIELD(effects.spall)));
     k.push_back(quantity("spall_strength", D::pressure, Range{0.0, 1e12, true, false}, "1.2 GPa",
                          "spall strength (aluminium alloys: 1.0-1.6 GPa at 1e4-1e6 /s)", FIELD(spall_strength)));
+    k.push_back(flag("heat_conduction", "off",
+                     "Fourier heat conduction between points through the grid, with thermal_conductivity "
+                     "(needs thermal = on)",
+                     FIELD(effects.heat_conduction)));
     k.push_back(flag("artificial_viscosity", "on", "shock-capturing bulk viscosity in compression",
                      FIELD(effects.artificial_viscosity)));
     // Material (the paper's aluminium)
@@ -289,7 +293,7 @@ const std::vector<Key>& keys() {
     k.push_back(quantity("specific_heat", D::specific_heat, positive(), "880 J/(kg K)",
                          "specific heat c_v", FIELD(material.specific_heat)));
     k.push_back(quantity("thermal_conductivity", D::conductivity, non_negative(), "237 W/(m K)",
-                         "thermal conductivity k (recorded; heat conduction is not modelled yet)",
+                         "thermal conductivity k, used with heat_conduction = on",
                          FIELD(material.thermal_conductivity)));
     k.push_back(quantity("initial_temperature", D::temperature, positive(), "300 K",
                          "initial temperature T0", FIELD(material.initial_temperature)));
@@ -559,6 +563,8 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   if (!is_multiple(s.flyer_height, a))
     fail("flyer_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
                              format_number(a) + " m)");
+  if (s.effects.heat_conduction && !s.effects.thermal)
+    fail("heat_conduction", "needs thermal = on (conduction moves heat by temperature differences)");
   if (s.material.tangent_modulus >= s.material.youngs_modulus)
     fail("tangent_modulus", "must be smaller than youngs_modulus");
   if (s.porosity > 1.0) {

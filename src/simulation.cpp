@@ -18,7 +18,7 @@ bool bin_points(StripBins& bins, const Particles<D>& pts, const GridGeometry<D>&
 // The kernels for one choice of shape function and laws: every combination the variants of
 // model.hpp allow is instantiated by std::visit, none is listed by hand.
 template <int D, class Shape, class Eos, class Strength, class Viscosity, class Failure>
-Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction) {
+Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction, bool conduction) {
   constexpr bool stress = Strength::has_stress;
   Kernels<D> k{};
   k.bin = bin_points<D, Shape>;
@@ -30,6 +30,7 @@ Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction) {
                                        : grid_to_particles_velocity<D, Shape, false, false>);
   k.gradient_work_and_move = velocity_gradient_work_and_move<D, Shape, stress>;
   k.update_points = update_all_points<D, Eos, Strength, Viscosity, Failure>;
+  if (conduction) k.conduct = conduct_heat<D, Shape>;
   return k;
 }
 
@@ -38,8 +39,8 @@ Kernels<D> kernels_for(const Model& m) {
   return std::visit(
       [&](auto shape, const auto& eos, const auto& strength, const auto& viscosity, const auto& failure) {
         return kernels_for<D, decltype(shape), std::decay_t<decltype(eos)>, std::decay_t<decltype(strength)>,
-                           std::decay_t<decltype(viscosity)>, std::decay_t<decltype(failure)>>(m.scheme,
-                                                                                            m.flip_fraction);
+                           std::decay_t<decltype(viscosity)>, std::decay_t<decltype(failure)>>(
+            m.scheme, m.flip_fraction, m.conducts_heat());
       },
       m.shape, m.eos, m.strength, m.viscosity, m.failure);
 }
@@ -66,6 +67,10 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
     : model_(scene), points_(std::move(points)), grid_(grid), kernels_(kernels_for<D>(model_)),
       effects_(effects_for<D>(model_)), clock_(clock) {
   points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
+  heat_.conductivity = model_.conductivity;
+  heat_.specific_heat = scene.material.specific_heat;
+  if (model_.conducts_heat())
+    heat_.relaxation_time = model_.cell_size * model_.cell_size / (M_PI * M_PI * model_.diffusivity);
 }
 
 template <int D>
@@ -82,6 +87,8 @@ StepStatus Simulation<D>::step(double dt) {
   const bool musl = model_.scheme == UpdateScheme::musl;
   grid_.reset(rows);                                                   // reset grid
   kernels_.to_grid(points_, bins_, grid_);                             // P2G: m_i, p_i, f_i
+  if (kernels_.conduct)                                                //   heat conduction: E_p
+    kernels_.conduct(points_, bins_, grid_, *model_.thermal, heat_, dt);
   update_grid_momentum(grid_, rows, dt);                               // a_i, v_i^{n+1}
   for (auto& e : effects_) e->after_grid_update(grid_, rows, dt);      //   (boundary conditions)
   kernels_.velocity_to_points(points_, bins_, grid_, dt,               // G2P: FLIP (/PIC) v_p (MUSL: re-map m_p v_p)

@@ -4,6 +4,7 @@
 // chosen (simulation.cpp), so hot loops test no flags and a new law is a new type in a variant.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <variant>
 
@@ -40,6 +41,8 @@ struct Model {
   double cell_size;
   double cfl;
   double speed_limit;  // |v| above this is a numerical runaway, not physics
+  double conductivity = 0.0;   // k with heat_conduction = on, else 0
+  double diffusivity = 0.0;    // k / (rho0 c_v) [m2/s]
 
   explicit Model(const Scene& s);
 
@@ -49,6 +52,13 @@ struct Model {
   double shear_modulus() const;
   bool has_strength() const { return has_stress(strength); }
   bool has_failure() const { return std::holds_alternative<Spall>(failure); }
+  bool conducts_heat() const { return conductivity > 0.0; }
+  // The time step the physics allows: cfl h over the fastest signal, and with conduction the
+  // explicit diffusion bound 0.2 h^2 / alpha.
+  double time_step(double max_signal) const {
+    const double mechanical = cfl * cell_size / max_signal;
+    return conducts_heat() ? std::min(mechanical, 0.2 * cell_size * cell_size / diffusivity) : mechanical;
+  }
 };
 
 }  // namespace mpmshock

@@ -45,6 +45,7 @@ struct Effects {
   bool thermal = true;               // the paper's temperature model
   bool artificial_viscosity = true;  // shock-capturing bulk viscosity
   bool spall = false;                // failure in tension (spall.hpp)
+  bool heat_conduction = false;      // Fourier conduction (heat_conduction.hpp)
 };
 
 struct Scene {

@@ -9,6 +9,7 @@
 
 #include "mpmshock/constitutive.hpp"
 #include "mpmshock/grid.hpp"
+#include "mpmshock/heat_conduction.hpp"
 #include "mpmshock/model.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
@@ -26,6 +27,9 @@ struct Kernels {
   void (*velocity_to_points)(Particles<D>&, const StripBins&, Grid<D>&, double dt, double flip_fraction);
   std::size_t (*gradient_work_and_move)(Particles<D>&, const Grid<D>&, const std::vector<Vec<D>>& u, double dt);
   StressUpdateResult (*update_points)(Particles<D>&, const Model&, double dt);
+  // Heat conduction, or null when the scene has none.
+  void (*conduct)(Particles<D>&, const StripBins&, const Grid<D>&, const HugoniotTemperature&, HeatConduction&,
+                  double dt);
 };
 
 // Where the integrator stands: all it needs, besides the points, to take the next step.
@@ -54,7 +58,7 @@ class Simulation {
   StepStatus check_at_sample();
 
   // cfl h / fastest signal of the last step.
-  double stable_time_step() const { return model_.cfl * model_.cell_size / clock_.max_signal; }
+  double stable_time_step() const { return model_.time_step(clock_.max_signal); }
 
   double time() const { return clock_.time; }
   std::int64_t steps() const { return clock_.steps; }
@@ -75,6 +79,7 @@ class Simulation {
   Grid<D> grid_;
   StripBins bins_;
   Kernels<D> kernels_;
+  HeatConduction heat_;
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;
   Clock clock_;
 };
