@@ -7,8 +7,8 @@ or put scripts/ on PYTHONPATH. From a notebook:
     from mpmshock_post import reader
     run = reader.Run("output/paper_base")
 
-The plotting modules (timeseries, field, hist, compare) return matplotlib Figures in the paper's
-units (g/cm3, GPa, K, m/s, ns, um); the command line `scripts/mpmshock-plot` drives them.
+The plotting modules (timeseries, field, hist, compare, probes) return matplotlib Figures in the
+paper's units (g/cm3, GPa, K, m/s, ns, um); the command line `scripts/mpmshock-plot` drives them.
 """
 
 from .errors import PostError

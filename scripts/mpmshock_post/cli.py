@@ -16,6 +16,7 @@ from .compare import plot_compare
 from .errors import PostError
 from .field import plot_field
 from .hist import moments_table, plot_histograms
+from .probes import PROBE_QUANTITIES, plot_probes
 from .reader import Run
 from .style import FORMATS, save_figure
 from .units import parse_time
@@ -120,7 +121,7 @@ def build_parser():
                        help="the snapshot nearest T, e.g. 750ns or 1.15us")
     field.add_argument("--color", default="density",
                        help="density, pressure, temperature, velocity_x, velocity_y, speed, rot2, div2, "
-                       "strain_rate2, plastic_strain, ... (default density)")
+                       "strain_rate2, plastic_strain, damage, ... (default density)")
     field.add_argument("--arrows", action="store_true", help="draw velocity arrows")
     field.add_argument("--arrow-scale", type=float, metavar="UM_PER_MPS",
                        help="arrow length in um per m/s of velocity (default: a typical speed is one "
@@ -155,6 +156,20 @@ def build_parser():
     compare.add_argument("--labels", type=_list, help="comma-separated legend entries, one per run")
     compare.add_argument("--trange", type=_argument(_time_range), metavar="T0,T1", help="time window")
     compare.add_argument("--logy", action="store_true", help="logarithmic y axes")
+
+    probe = kind("probe", "probe histories from probes.csv (probe.NAME scene keys): by default the "
+                 "free-surface velocity against time, as a VISAR or PDV records it; several runs overlaid",
+                 [common], runs="many")
+    probe.add_argument("--probes", type=_list, default=[],
+                       help="comma-separated probes of probes.csv, e.g. free_surface (default: all)")
+    probe.add_argument("--quantity", choices=PROBE_QUANTITIES, default="velocity_y",
+                       help="what to plot (default velocity_y, in m/s)")
+    probe.add_argument("--trange", "--time-range", dest="trange", type=_argument(_time_range), metavar="T0,T1",
+                       help="time window, e.g. 150ns,420ns")
+    probe.add_argument("--labels", type=_list, help="comma-separated legend entries, one per run")
+    probe.add_argument("--target-frame", action="store_true",
+                       help="add the scene's velocity to u_y: the record of a target at rest (0 before "
+                       "the shock arrives), as an experiment measures it")
     return parser
 
 
@@ -212,8 +227,15 @@ def _compare(args):
     return fig, "compare_" + "_".join(args.quantities), runs[0].path
 
 
+def _probe(args):
+    runs = [Run(path) for path in args.run_dirs]
+    fig = plot_probes(runs, probes=args.probes, quantity_name=args.quantity, trange=args.trange,
+                      labels=args.labels, target_frame=args.target_frame, title=args.title)
+    return fig, f"probe_{args.quantity}", runs[0].path
+
+
 _KINDS = {"timeseries": _series, "std": _series, "dissipation": _series, "field": _field, "hist": _hist,
-          "compare": _compare}
+          "compare": _compare, "probe": _probe}
 
 
 def main(argv=None):

@@ -16,6 +16,8 @@ from .units import LENGTH_FACTOR, TIME, quantity
 _BODIES = {"flyer": 0, "target": 1}
 _MARGINS_IN = dict(left=0.9, right=1.4, bottom=0.6, top=0.7)  # room for ticks, colourbar, title
 _ARROWS_ACROSS = 20  # arrows along the window's width: readable, yet they follow the voids
+# Quantities with a fixed range: damage is 0 or 1, and a few failed points must not set the scale.
+_FIXED_LIMITS = {"damage": (0.0, 1.0)}
 
 
 def _axes_size(width_um, height_um, longest_in=8.0):
@@ -102,7 +104,8 @@ def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window
     """The material points of a snapshot coloured by `color` in the paper's units.
 
     window_um: (x0, x1, y0, y1) in um, default the whole chosen body; body: 'all', 'target' or
-    'flyer'; clim: colour limits in display units; arrow_scale: um of arrow per m/s.
+    'flyer'; clim: colour limits in display units (default: the central 99% of the points; 0 to 1
+    for damage); arrow_scale: um of arrow per m/s.
     """
     q = quantity(color)
     values = local_quantity(snapshot, color) * q.factor
@@ -126,7 +129,7 @@ def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window
 
     points_per_um = ax_w * 72.0 / (x1 - x0)
     sizes = (_marker_side_um(snapshot, points) * points_per_um) ** 2
-    vmin, vmax = clim if clim is not None else _robust_limits(values)
+    vmin, vmax = clim if clim is not None else _FIXED_LIMITS.get(color) or _robust_limits(values)
     scatter = ax.scatter(xy[:, 0], xy[:, 1], c=values, s=sizes, marker="s", linewidths=0, cmap=cmap,
                          vmin=vmin, vmax=vmax, rasterized=True)
     extend = {(False, False): "neither", (True, False): "min", (False, True): "max", (True, True): "both"}

@@ -10,8 +10,8 @@ _PAPER_KEYS = {
 _DISPLAY_UNITS = {"m": (1e6, "µm"), "s": (1e9, "ns"), "Pa": (1e-9, "GPa")}
 # Keys that say where and how a run was written, or that the simulator derives from the others
 # (grid_margin follows from velocity and end_time): they do not name the physical case.
-_NOT_THE_CASE = ("output_dir", "sample_interval", "snapshot_interval", "grid_margin")
-_NOT_THE_CASE_PREFIXES = ("region.", "snapshot_")
+_NOT_THE_CASE = ("output_dir", "sample_interval", "snapshot_interval", "probe_interval", "grid_margin")
+_NOT_THE_CASE_PREFIXES = ("region.", "probe.", "snapshot_")
 _MOST_KEYS_IN_A_LABEL = 3
 
 

@@ -3,6 +3,7 @@
     run = Run("output/paper_base")
     run.scene["porosity"]            # 1.03
     b800 = run.regions()["B800"]     # column -> numpy array, e.g. b800["pressure_mean"] in Pa
+    surface = run.probes()["free_surface"]   # probes.csv: surface["velocity_y"] in m/s
     snap = run.snapshot(time=750e-9)
     rho = snap["density"]            # kg/m3, one value per material point
     region_stats(snap, "B800")       # the regions.csv row, recomputed from the snapshot
@@ -158,7 +159,7 @@ class SnapshotInfo(NamedTuple):
 
 
 class Run:
-    """An mpmshock output directory: scene, region time series, conservation, voids, snapshots."""
+    """An mpmshock output directory: scene, region time series, probes, conservation, voids, snapshots."""
 
     def __init__(self, path):
         self.path = Path(path)
@@ -186,6 +187,22 @@ class Run:
         names = list(dict.fromkeys(row[1] for row in rows))
         return {name: _columns(path, header, [row for row in rows if row[1] == name], text_columns=("region",),
                                  int_columns=("count",))
+                for name in names}
+
+    def probes(self):
+        """Probe name -> {column -> array} from probes.csv (time, count, x, y, velocity_x,
+        velocity_y, pressure, density, temperature: means over the probe's points, SI units),
+        probes in file order."""
+        path = self.path / "probes.csv"
+        if not path.is_file() and not any(key.startswith("probe.") for key in self.scene):
+            raise PostError(f"{self.path} has no probes.csv: the scene has no probe.NAME keys "
+                            "(e.g. 'probe.free_surface = surface' or 'probe.p1 = point 20um 600um')")
+        header, rows = _read_csv(path)
+        if header[:2] != ["time", "probe"]:
+            raise PostError(f"{path}: header should start with 'time,probe', got '{','.join(header[:2])}'")
+        names = list(dict.fromkeys(row[1] for row in rows))
+        return {name: _columns(path, header, [row for row in rows if row[1] == name], text_columns=("probe",),
+                               int_columns=("count",))
                 for name in names}
 
     def conservation(self):
