@@ -20,16 +20,32 @@ ViscosityLaw viscosity_of(const Scene& s) {
 
 }  // namespace
 
+ThermalSoftening softening_of(const Scene& s) {
+  ThermalSoftening soft;
+  soft.melt = melt_curve_of(s);
+  soft.T_s = s.softening_temperature;
+  return soft;
+}
+
 StrengthLaw strength_of(const Scene& s) {
   if (!s.effects.plasticity) return NoStrength{};
-  if (s.material.hardening_beta == 1.0) return VonMises<false>(s.material);
+  const bool isotropic = s.material.hardening_beta == 1.0;
+  if (s.effects.thermal_softening) {
+    if (isotropic) return VonMises<false, true>(s.material, softening_of(s));
+    return VonMises<true, true>(s.material, softening_of(s));
+  }
+  if (isotropic) return VonMises<false>(s.material);
   return VonMises<true>(s.material);
+}
+
+MeltCurve melt_curve_of(const Scene& s) {
+  return {s.melt_temperature, s.lindemann_a, s.material.gruneisen_gamma};
 }
 
 Model::Model(const Scene& s)
     : shape(shape_of(s)), eos(MieGruneisen(s.material)), strength(strength_of(s)), viscosity(viscosity_of(s)),
       failure(s.effects.spall ? FailureLaw(Spall{s.spall_strength}) : FailureLaw(NoFailure{})),
-      scheme(s.update_scheme), flip_fraction(s.flip_fraction), cell_size(s.cell_size), cfl(s.cfl),
+      scheme(s.update_scheme), flip_fraction(s.flip_fraction), taylor_quinney(s.taylor_quinney), cell_size(s.cell_size), cfl(s.cfl),
       // No material point outruns several times the impact speed plus the sound speed; a point
       // that does is a blow-up.
       speed_limit(10.0 * (2.0 * s.velocity + s.material.sound_speed)) {

@@ -57,6 +57,7 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
   const std::string name = snapshot_name(run.schedule.snapshot_index);
   SnapshotOptions<D> options;
   options.compression = static_cast<int>(scene_.snapshot_compression);
+  options.melt = melt_curve_of(scene_);
   if (scene_.snapshot_grid) {
     options.grid = &sim.grid();
     options.grid_rows = sim.active_rows();

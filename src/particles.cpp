@@ -11,6 +11,7 @@ void for_each_field(P& p, F&& f) {
   if (p.has_strength()) f(p.s), f(p.eps_p);
   if (p.has_back_stress()) f(p.alpha);
   if (p.has_failure()) f(p.failure_J);
+  if (p.stores_cold_work()) f(p.E_stored);
 }
 
 }  // namespace
@@ -31,6 +32,7 @@ void Particles<D>::add(const Vec<D>& position, const Vec<D>& velocity, double ma
   }
   if (back_stress_) alpha.push_back({});
   if (failure_) failure_J.push_back(0.0);
+  if (stored_) E_stored.push_back(0.0);
   body.push_back(b);
 }
 
@@ -47,6 +49,12 @@ template <int D>
 void Particles<D>::enable_failure(bool on) {
   failure_ = on;
   failure_J.assign(on ? size() : 0, 0.0);
+}
+
+template <int D>
+void Particles<D>::enable_cold_work(bool on) {
+  stored_ = on;
+  E_stored.assign(on ? size() : 0, 0.0);
 }
 
 template <int D>

@@ -189,11 +189,12 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
       if (snapshot_number(e.path()) > index) later.push_back(e.path());
     if (!options.force) {
       const std::size_t later_rows =
-          count_rows_after(dir / "regions.csv", t0) + count_rows_after(dir / "conservation.csv", t0);
+          count_rows_after(dir / "regions.csv", t0) + count_rows_after(dir / "conservation.csv", t0) +
+          count_rows_after(dir / "probes.csv", t0);
       if (!later.empty() || later_rows > 0)
         throw SceneError(snapshot + ": restarting here discards " + std::to_string(later.size()) +
                          " later snapshot(s) and " + std::to_string(later_rows) +
-                         " later row(s) of regions.csv and conservation.csv; pass --force to replace them");
+                         " later row(s) of regions.csv, conservation.csv and probes.csv; pass --force to replace them");
     }
     for (const fs::path& p : later) fs::remove(p);
     truncate_rows_after(dir / "regions.csv", t0);

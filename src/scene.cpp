@@ -269,6 +269,23 @@ const std::vector<Key>& keys() {
                      "Fourier heat conduction between points through the grid, with thermal_conductivity "
                      "(needs thermal = on)",
                      FIELD(effects.heat_conduction)));
+    k.push_back(flag("thermal_softening", "off",
+                     "shear modulus and yield stress fall linearly with temperature and vanish in the melt "
+                     "(Steinberg-Guinan; needs plasticity and thermal on)",
+                     FIELD(effects.thermal_softening)));
+    k.push_back(quantity("softening_temperature", D::temperature, Range{300.0, 1e5, true, false}, "1923 K",
+                         "temperature at which linear softening would take G and sigma_Y to zero (Steinberg-Guinan "
+                         "6061-T6: 300 K + 1/(6.16e-4 /K))",
+                         FIELD(softening_temperature)));
+    k.push_back(quantity("melt_temperature", D::temperature, Range{0.0, 1e5, true, false}, "1220 K",
+                         "melt temperature at J = 1; T_m(J) = T_m0 exp(2a(1 - J)) J^(-2(gamma0 - a - 1/3)) (Lindemann)",
+                         FIELD(melt_temperature)));
+    k.push_back(quantity("lindemann_a", D::none, closed(0.0, 10.0), "1.5",
+                         "volume coefficient a of the Lindemann melt curve (Steinberg-Guinan aluminium)",
+                         FIELD(lindemann_a)));
+    k.push_back(quantity("taylor_quinney", D::none, closed(0.0, 1.0), "1",
+                         "share of plastic work that becomes heat; the rest is stored as cold work",
+                         FIELD(taylor_quinney)));
     k.push_back(flag("artificial_viscosity", "on", "shock-capturing bulk viscosity in compression",
                      FIELD(effects.artificial_viscosity)));
     // Material (the paper's aluminium)
@@ -563,6 +580,8 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   if (!is_multiple(s.flyer_height, a))
     fail("flyer_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
                              format_number(a) + " m)");
+  if (s.effects.thermal_softening && !(s.effects.thermal && s.effects.plasticity))
+    fail("thermal_softening", "needs thermal = on and plasticity = on (it softens the strength by temperature)");
   if (s.effects.heat_conduction && !s.effects.thermal)
     fail("heat_conduction", "needs thermal = on (conduction moves heat by temperature differences)");
   if (s.material.tangent_modulus >= s.material.youngs_modulus)

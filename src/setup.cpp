@@ -42,6 +42,7 @@ SizeEstimate estimate_size(const Scene& s) {
   const StrengthLaw strength = strength_of(s);
   sample.enable_strength(has_stress(strength), has_back_stress(strength));
   sample.enable_failure(s.effects.spall);
+  sample.enable_cold_work(s.effects.plasticity && s.taylor_quinney < 1.0);
   e.point_bytes = e.points * static_cast<double>(sample.bytes_per_point() + StripBins::kBytesPerPoint);
   e.node_bytes = e.nodes * static_cast<double>(Grid<D>::bytes_per_node());
   return e;
@@ -121,6 +122,7 @@ InitialState<2> build_initial_state<2>(const Scene& s) {
   const StrengthLaw strength = strength_of(s);
   st.particles.enable_strength(has_stress(strength), has_back_stress(strength));
   st.particles.enable_failure(s.effects.spall);
+  st.particles.enable_cold_work(s.effects.plasticity && s.taylor_quinney < 1.0);
   st.particles.reserve(n);
   add_points(st.particles, flyer, flyer_voids, +s.velocity, s.material.density, Body::flyer);
   add_points(st.particles, target, target_voids, -s.velocity, s.material.density, Body::target);

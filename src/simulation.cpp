@@ -144,7 +144,7 @@ std::string Simulation<D>::describe(const StepStatus& status) const {
       break;
     case StepStatus::Code::below_zero_kelvin:
       out << "material point " << pts.id[p] << " reached a non-physical state (temperature "
-          << model_.thermal->temperature(pts.material_J(p), pts.E[p]) << " K: its internal energy " << pts.E[p]
+          << model_.thermal->temperature(pts.material_J(p), pts.thermal_energy(p)) << " K: its internal energy " << pts.E[p]
           << " J/kg is below the 0 K isotherm at J = " << J << "); at ";
       print_vector(out, pts.x[p]);
       out << " m with pressure " << pts.P[p] << " Pa. Typical cause: a shock without enough artificial viscosity";

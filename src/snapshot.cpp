@@ -41,7 +41,8 @@ template <int D>
 constexpr hsize_t kDeviatorComponents = D == 2 ? 3 : 5;
 
 template <int D>
-void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperature* thermal, int level) {
+void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperature* thermal, int level,
+                     const MeltCurve& melt) {
   Handle group(H5Gcreate2(file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /particles");
   const hid_t g = group.get();
   const std::size_t n = p.size();
@@ -67,7 +68,7 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
   doubles("density", scalar.data(), {N}, "kg/m3", "density of the material point", chosen);
   doubles("pressure", p.P.data(), {N}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)", chosen);
   doubles("viscous_pressure", p.q.data(), {N}, "Pa", "artificial viscous pressure q", chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->temperature(p.material_J(q), p.E[q]) : std::nan("");
+  for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->temperature(p.material_J(q), p.thermal_energy(q)) : std::nan("");
   doubles("temperature", scalar.data(), {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
   doubles("internal_energy", p.E.data(), {N}, "J/kg", "specific internal energy, 0 at the reference state", chosen);
 
@@ -89,6 +90,10 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
           D == 2 ? "Cauchy stress s - (P + q) I, plane strain (zz non-zero)" : "Cauchy stress s - (P + q) I", chosen);
   for (std::size_t q = 0; q < n; ++q) scalar[q] = p.has_strength() ? p.eps_p[q] : 0.0;
   doubles("plastic_strain", scalar.data(), {N}, "", "effective plastic strain", chosen);
+  for (std::size_t q = 0; q < n; ++q)
+    scalar[q] = thermal && thermal->temperature(p.material_J(q), p.thermal_energy(q)) >= melt.at(p.material_J(q));
+  doubles("melted", scalar.data(), {N}, "",
+          "1 where T is at or above the Lindemann melt temperature T_m(J), else 0 (0 with thermal = off)", chosen);
   for (std::size_t q = 0; q < n; ++q) scalar[q] = p.failed(q) ? 1.0 : 0.0;
   doubles("damage", scalar.data(), {N}, "", "0 intact, 1 failed in tension (spall = on; 0 without)", chosen);
   doubles("deformation_gradient", flat(p.F), {N, d, d}, "",
@@ -134,6 +139,9 @@ void write_restart(hid_t file, const Particles<D>& p, const RunState& run) {
   if (p.has_strength())
     h5::write_dataset(g, "deviatoric_stress", H5T_NATIVE_DOUBLE, flat(p.s), {N, C}, "Pa",
                       (std::string("deviatoric stress s: ") + components).c_str());
+  if (p.stores_cold_work())
+    h5::write_dataset(g, "stored_energy", H5T_NATIVE_DOUBLE, p.E_stored.data(), {N}, "J/kg",
+                      "plastic work stored as cold work, not heat (taylor_quinney < 1)");
   if (p.has_failure())
     h5::write_dataset(g, "failure_J", H5T_NATIVE_DOUBLE, p.failure_J.data(), {N}, "",
                       "0 while intact; the volume ratio J at which the point failed in tension");
@@ -338,7 +346,7 @@ void write_snapshot(const std::string& path, const Particles<D>& p, const Hugoni
       h5::write_string_attribute(f, "scene", run.scene_text);
       h5::write_string_attribute(f, "mpmshock_version", kVersion);
       h5::write_int_attribute(f, "format_version", 2);
-      write_particles(f, p, thermal, options.compression);
+      write_particles(f, p, thermal, options.compression, options.melt);
       write_restart(f, p, run);
       if (options.grid) write_grid(f, options);
       h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flush " + tmp);
@@ -460,6 +468,8 @@ Restart<D> read_state(const std::string& path) {
       p.eps_p = h5::read_doubles(f, "/particles/plastic_strain", n, {});
     }
     if (back) unflatten(h5::read_doubles(g, "back_stress", n, {C}), p.alpha);
+    p.enable_cold_work(h5::has_link(g, "stored_energy"));
+    if (p.stores_cold_work()) p.E_stored = h5::read_doubles(g, "stored_energy", n, {});
     p.enable_failure(h5::has_link(g, "failure_J"));
     if (p.has_failure()) p.failure_J = h5::read_doubles(g, "failure_J", n, {});
     return r;

@@ -85,7 +85,7 @@ std::string particle_step(const XdmfSnapshot& s) {
   x << "        <Geometry GeometryType=\"XY\">\n";
   data_item(x, dims(s.points, "2"), s.file + ":/particles/position", "          ");
   x << "        </Geometry>\n";
-  for (const char* name : {"density", "pressure", "temperature", "internal_energy", "plastic_strain",
+  for (const char* name : {"density", "pressure", "temperature", "internal_energy", "plastic_strain", "damage", "melted",
                            "viscous_pressure", "mass", "volume"})
     attribute(x, s, name, "Scalar", "");
   point_velocity(x, s);

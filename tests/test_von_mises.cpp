@@ -133,5 +133,66 @@ int main() {
     }
     CHECK(yielded);
   }
+  // Thermal softening (Steinberg-Guinan form) against its closed form at chosen states.
+  {
+    ThermalSoftening soft;  // T_r 300 K, T_s 1923 K, T_m0 1220 K, a 1.5, gamma0 1.96
+    CHECK_NEAR(soft.factor(300.0, 1.0), 1.0, 1e-15);
+    CHECK_NEAR(soft.factor(1111.5, 1.0), 0.5, 1e-12);
+    CHECK_NEAR(soft.melt.at(1.0), 1220.0, 1e-9);
+    const double Tm085 = 1220.0 * std::exp(3.0 * 0.15) * std::pow(0.85, -2.0 * (1.96 - 1.5 - 1.0 / 3.0));
+    CHECK_REL(soft.melt.at(0.85), Tm085, 1e-14);  // 1995 K: compression raises the melt point
+    CHECK_NEAR(soft.factor(1219.0, 1.0), 1.0 - 919.0 / 1623.0, 1e-12);
+    CHECK(soft.factor(1221.0, 1.0) == 0.0);  // molten at ambient volume
+    CHECK(soft.factor(1500.0, 0.85) > 0.0);   // but solid under compression
+
+    // A hot point in uniaxial strain first yields at f(T) sigma_Y0, and a molten one holds no shear.
+    Material m;
+    const MieGruneisen eos(m);
+    const VonMises<false, true> hot(m, soft);
+    const HugoniotTemperature thermal(m);
+    PointState<2> st{{{{0, 0}, {0, -1e3}}}, 0, Mat<2>::identity(), m.specific_heat * 500.0, 0, 0, {}, {}, 0};
+    bool yielded = false;
+    for (int k = 0; k < 5000 && !yielded; ++k) {
+      update_point<2>(st, eos, hot, NoViscosity{}, 10e-6, 1e-9);
+      if (st.eps_p > 0) {
+        yielded = true;
+        const double J = det(st.F), f = soft.factor(thermal.temperature(J, st.E), J);
+        CHECK(f > 0.6 && f < 0.75);  // about 800 K
+        CHECK_REL(std::abs(st.s.xx - st.s.yy), f * hot.yield_radius(st.eps_p), 1e-9);
+      }
+    }
+    CHECK(yielded);
+    PointState<2> melt{{{{0, 0}, {0, -1e3}}}, 0, Mat<2>::identity(), m.specific_heat * 1000.0, 0, 0, {}, {}, 0};
+    for (int k = 0; k < 100; ++k) update_point<2>(melt, eos, hot, NoViscosity{}, 10e-6, 1e-9);
+    CHECK(melt.s.norm2() == 0.0 && melt.eps_p == 0.0);
+  }
+
+  // Taylor-Quinney: a share 1 - beta_TQ of the plastic work sigma_Y d eps_p / rho is stored, the
+  // rest is heat; the internal energy itself (and so the energy balance) is the same for any share.
+  {
+    Material m;
+    const MieGruneisen eos(m);
+    const VonMises<false> strength(m);
+    auto load = [&](double tq, double& stored_expected) {
+      PointState<2> st{{{{0, 0}, {0, -1e4}}}, 0, Mat<2>::identity(), 0, 0, 0, {}, {}, 0};
+      stored_expected = 0.0;
+      for (int k = 0; k < 3000; ++k) {
+        const double eps_before = st.eps_p;
+        // The work the forces do on the point, as the transfers would give it: V sigma : L dt / m.
+        st.work = 1e-9 * det(st.F) / m.density * (-st.P * trace(st.L) + contract(st.s, st.L));
+        update_point<2>(st, eos, strength, NoViscosity{}, 10e-6, 1e-9, NoFailure{}, tq);
+        const double rho = m.density / det(st.F);
+        stored_expected += (1.0 - tq) * strength.yield_radius(st.eps_p) * (st.eps_p - eps_before) / rho;
+      }
+      return st;
+    };
+    double expected_1 = 0.0, expected_06 = 0.0;
+    const PointState<2> all_heat = load(1.0, expected_1), some_stored = load(0.6, expected_06);
+    CHECK(some_stored.eps_p > 0.01);
+    CHECK(all_heat.E_stored == 0.0);
+    CHECK_REL(some_stored.E_stored, expected_06, 1e-12);
+    CHECK(some_stored.E == all_heat.E);
+    std::printf("taylor_quinney 0.6: %.1f of %.1f J/kg stored as cold work\n", some_stored.E_stored, some_stored.E);
+  }
   return check::result();
 }

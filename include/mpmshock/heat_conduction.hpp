@@ -54,7 +54,7 @@ void conduct_heat(Particles<D>& pts, const StripBins& bins, const Grid<D>& g, co
   for (std::size_t i = first; i < last; ++i) h.node_heat[i] = h.node_rate[i] = 0.0;
 
   bins.scatter([&](std::size_t p) {  // 1. m_i T_i
-    const double mT = pts.m[p] * thermal.temperature(pts.material_J(p), pts.E[p]);
+    const double mT = pts.m[p] * thermal.temperature(pts.material_J(p), pts.thermal_energy(p));
     for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
                   [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * mT; });
   });
@@ -78,7 +78,7 @@ void conduct_heat(Particles<D>& pts, const StripBins& bins, const Grid<D>& g, co
     double T_grid = 0.0;
     for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
                   [&](std::size_t i, double N, const Vec<D>&) { T_grid += N * h.node_heat[i]; });
-    d[p] = thermal.temperature(pts.material_J(p), pts.E[p]) - T_grid;
+    d[p] = thermal.temperature(pts.material_J(p), pts.thermal_energy(p)) - T_grid;
   }
   // 4b. The part of d the grid resolves (projection and interpolation smooth a smooth T by
   // O(h^2 grad^2 T), which is not sub-cell structure): d_i = sum_p N_ip m_p d_p / m_i.

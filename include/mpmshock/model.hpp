@@ -19,15 +19,19 @@
 namespace mpmshock {
 
 using EquationOfState = std::variant<MieGruneisen>;
-using StrengthLaw = std::variant<NoStrength, VonMises<false>, VonMises<true>>;
+using StrengthLaw = std::variant<NoStrength, VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>>;
 using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
 using FailureLaw = std::variant<NoFailure, Spall>;
 using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape>;
 
 // The strength law a scene calls for, and what it stores per point.
 StrengthLaw strength_of(const Scene& s);
+// The Lindemann melt curve of a scene (thermal_softening.hpp).
+MeltCurve melt_curve_of(const Scene& s);
 inline bool has_stress(const StrengthLaw& law) { return !std::holds_alternative<NoStrength>(law); }
-inline bool has_back_stress(const StrengthLaw& law) { return std::holds_alternative<VonMises<true>>(law); }
+inline bool has_back_stress(const StrengthLaw& law) {
+  return std::holds_alternative<VonMises<true>>(law) || std::holds_alternative<VonMises<true, true>>(law);
+}
 
 struct Model {
   ShapeChoice shape;
@@ -38,6 +42,7 @@ struct Model {
   std::optional<HugoniotTemperature> thermal;  // the paper's temperature model (thermal = on)
   UpdateScheme scheme;
   double flip_fraction;  // 1: pure FLIP
+  double taylor_quinney;  // share of plastic work that becomes heat
   double cell_size;
   double cfl;
   double speed_limit;  // |v| above this is a numerical runaway, not physics

@@ -10,6 +10,7 @@
 //              hardening)
 //   eps_p      effective plastic strain (with strength)
 //   failure_J  0 while intact; the J at which the point failed (with spall)
+//   E_stored   the part of E stored as cold work, not heat [J/kg] (taylor_quinney < 1)
 //   work       the work of the last step's nodal forces on the point [J/kg] (scratch of a step)
 #pragma once
 
@@ -32,6 +33,7 @@ struct Particles {
   std::vector<Deviator<D>> s, alpha;
   std::vector<double> eps_p;
   std::vector<double> failure_J;
+  std::vector<double> E_stored;
   std::vector<std::uint32_t> id;  // stable index, the order points were created in
   std::vector<Body> body;
 
@@ -40,6 +42,9 @@ struct Particles {
   bool has_back_stress() const { return back_stress_; }
   bool has_failure() const { return failure_; }
   bool failed(std::size_t p) const { return failure_ && failure_J[p] > 0.0; }
+  bool stores_cold_work() const { return stored_; }
+  // The part of the internal energy that is heat: E less the stored cold work.
+  double thermal_energy(std::size_t p) const { return stored_ ? E[p] - E_stored[p] : E[p]; }
 
   // J = det F: the volume the point occupies over its reference volume.
   double J(std::size_t p) const { return det(F[p]); }
@@ -55,12 +60,14 @@ struct Particles {
   void enable_strength(bool on, bool back_stress);
   // Allocates (or drops) failure_J, all intact.
   void enable_failure(bool on);
+  // Allocates (or drops) E_stored, all zero.
+  void enable_cold_work(bool on);
   void reserve(std::size_t n);
   // Memory this layout holds per point, for --check and the benchmarks.
   std::size_t bytes_per_point() const;
 
  private:
-  bool strength_ = false, back_stress_ = false, failure_ = false;
+  bool strength_ = false, back_stress_ = false, failure_ = false, stored_ = false;
 };
 
 extern template struct Particles<2>;

@@ -46,6 +46,7 @@ struct Effects {
   bool artificial_viscosity = true;  // shock-capturing bulk viscosity
   bool spall = false;                // failure in tension (spall.hpp)
   bool heat_conduction = false;      // Fourier conduction (heat_conduction.hpp)
+  bool thermal_softening = false;    // G and sigma_Y fall with T, vanish in the melt (thermal_softening.hpp)
 };
 
 struct Scene {
@@ -72,6 +73,10 @@ struct Scene {
   UpdateScheme update_scheme = UpdateScheme::musl;
   ShapeFunction shape_function = ShapeFunction::bspline2;
   double spall_strength = 1.2e9;  // [Pa] tension at which a point fails (spall = on)
+  double taylor_quinney = 1.0;    // share of plastic work that becomes heat
+  double softening_temperature = 1923.0;  // [K] where linear softening would reach zero
+  double melt_temperature = 1220.0;       // [K] T_m0, the melt temperature at J = 1
+  double lindemann_a = 1.5;               // volume exponent of the Lindemann melt curve
   double flip_fraction = 1.0;  // share of FLIP in the point velocity update; the rest is PIC
   double av_linear = 0.2;
   double av_quadratic = 2.0;

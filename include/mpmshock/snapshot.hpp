@@ -15,6 +15,7 @@
 #include "mpmshock/setup.hpp"
 #include "mpmshock/simulation.hpp"
 #include "mpmshock/temperature.hpp"
+#include "mpmshock/thermal_softening.hpp"
 
 namespace mpmshock {
 
@@ -32,6 +33,7 @@ struct SnapshotOptions {
   int compression = 0;  // gzip level for every field; 0: only the fields that compress >100x
   const Grid<D>* grid = nullptr;  // write /grid when given
   RowRange grid_rows;             // the grid's rows that hold this step's values
+  MeltCurve melt;                 // for /particles/melted
 };
 
 // Writes PATH.tmp and renames it over PATH when complete, so an interrupted write never leaves a

@@ -4,6 +4,11 @@
 //   NoStrength      hydrodynamics: s = 0, no deviatoric fields are stored
 //   VonMises<false> von Mises plasticity with linear isotropic hardening (hardening_beta = 1)
 //   VonMises<true>  mixed isotropic/kinematic hardening (hardening_beta < 1): a back stress alpha
+//   VonMises<B, true>  the same with thermal softening: G and sigma_Y scaled by f(T, J), zero in
+//                   the melt (thermal_softening.hpp)
+//
+// Every law returns the step's plastic work per unit volume, sigma_Y d eps_p, of which the share
+// taylor_quinney becomes heat and the rest is stored as cold work (constitutive.hpp).
 //
 // The stress rate is the Jaumann rate (objective); the plastic correction is a radial return.
 #pragma once
@@ -11,7 +16,9 @@
 #include <cmath>
 
 #include "mpmshock/material.hpp"
+#include "mpmshock/temperature.hpp"
 #include "mpmshock/tensor.hpp"
+#include "mpmshock/thermal_softening.hpp"
 
 namespace mpmshock {
 
@@ -20,19 +27,28 @@ struct NoStrength {
   static constexpr bool has_back_stress = false;
 };
 
-template <bool BackStress>
+template <bool BackStress, bool Softening = false>
 struct VonMises {
   static constexpr bool has_stress = true;
   static constexpr bool has_back_stress = BackStress;
+  static constexpr bool softens = Softening;
 
   double shear_modulus;    // G
   double plastic_modulus;  // H = E E_tan / (E - E_tan)
   double beta;             // share of hardening that is isotropic
   double initial_yield;    // sigma_Y0
 
+  // With Softening: the temperature model and the softening law.
+  HugoniotTemperature thermal;
+  ThermalSoftening softening;
+
   explicit VonMises(const Material& mat)
       : shear_modulus(mat.shear_modulus()), plastic_modulus(mat.plastic_modulus()), beta(mat.hardening_beta),
         initial_yield(mat.yield_stress) {}
+  VonMises(const Material& mat, const ThermalSoftening& soft) : VonMises(mat) {
+    thermal = HugoniotTemperature(mat);
+    softening = soft;
+  }
 
   // The yield radius only ever grows by beta H d eps_p, so it is a function of the effective
   // plastic strain and need not be stored.
@@ -44,13 +60,14 @@ struct VonMises {
   // The yield radius grows by beta H d eps_p; the back stress by (1 - beta) (2/3) H d e_p with
   // d e_p = sqrt(3/2) d eps_p n the plastic strain increment along n = xi/||xi||. With beta = 1
   // alpha stays zero, which is why callers may pass a scratch zero for it.
+  // With a softening factor k, G, H and the yield radius are k times theirs.
   template <int D>
-  double return_map(Deviator<D>& s, Deviator<D>& alpha, double& eps_p) const {
+  double return_map(Deviator<D>& s, Deviator<D>& alpha, double& eps_p, double k = 1.0) const {
     const Deviator<D> xi = s - alpha;
     const double q_trial = equivalent_stress(xi);
-    const double f = q_trial - yield_radius(eps_p);
+    const double f = q_trial - k * yield_radius(eps_p);
     if (f <= 0.0) return 0.0;
-    const double G = shear_modulus, H = plastic_modulus;
+    const double G = k * shear_modulus, H = k * plastic_modulus;
     const double deps_p = f / (3.0 * G + H);
     // n = xi / ||xi||, ||xi|| = sqrt(2/3) q_trial; plastic strain increment d e_p = sqrt(3/2) deps_p n.
     const double to_unit = 1.0 / (std::sqrt(2.0 / 3.0) * q_trial);
@@ -66,12 +83,25 @@ struct VonMises {
   // is rotated with the material by the step's rotation R (tensor.hpp, Hughes-Winget), then the
   // elastic increment added, s_trial = R s R^T + 2 G D' dt; the back stress rotates too; then the
   // radial return.
+  // Returns the plastic work per unit volume, sigma_Y d eps_p. J and the thermal part of the
+  // specific internal energy give the temperature, with Softening only.
   template <int D>
-  void update(Deviator<D>& s, Deviator<D>& alpha, double& eps_p, const StrainRate<D>& rate, double dt) const {
+  double update(Deviator<D>& s, Deviator<D>& alpha, double& eps_p, const StrainRate<D>& rate, double dt,
+                [[maybe_unused]] double J, [[maybe_unused]] double E_thermal) const {
+    double k = 1.0;
+    if constexpr (Softening) {
+      k = softening.factor(thermal.temperature(J, E_thermal), J);
+      if (k == 0.0) {  // molten: a fluid
+        s = {};
+        alpha = {};
+        return 0.0;
+      }
+    }
     const Rotation<D> R = spin_rotation(rate, dt);
-    s = rotate(s, R) + (dt * 2.0 * shear_modulus) * rate.deviator();
+    s = rotate(s, R) + (dt * 2.0 * k * shear_modulus) * rate.deviator();
     if constexpr (BackStress) alpha = rotate(alpha, R);
-    return_map(s, alpha, eps_p);
+    const double deps_p = return_map(s, alpha, eps_p, k);
+    return k * yield_radius(eps_p) * deps_p;
   }
 };
 

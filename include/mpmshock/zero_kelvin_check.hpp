@@ -20,7 +20,7 @@ class ZeroKelvinCheck final : public StepEffect<D> {
     std::size_t first = ~std::size_t{0};
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(min : first)
     for (std::size_t p = 0; p < pts.size(); ++p)
-      if (!(thermal_.temperature(pts.material_J(p), pts.E[p]) > 0.0)) first = p < first ? p : first;
+      if (!(thermal_.temperature(pts.material_J(p), pts.thermal_energy(p)) > 0.0)) first = p < first ? p : first;
     if (first == ~std::size_t{0}) return {};
     return {StepStatus::Code::below_zero_kelvin, first};
   }
