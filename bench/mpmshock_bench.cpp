@@ -172,6 +172,11 @@ int main(int argc, char** argv) {
       {"shape gimp", {"shape_function=gimp"}},
       {"update scheme USL", {"update_scheme=usl"}},
       {"3 x 3 points per cell", {"particles_per_cell=3"}},
+      {"spall on", {"spall=on"}},
+      {"heat conduction on", {"heat_conduction=on"}},
+      {"thermal softening on", {"thermal_softening=on"}},
+      {"taylor_quinney 0.9", {"taylor_quinney=0.9"}},
+      {"flip_fraction 0.95", {"flip_fraction=0.95"}},
   };
   std::vector<Measure> m(variants.size());
   for (int r = 0; r < repeats; ++r)
