@@ -244,7 +244,8 @@ const std::vector<Key>& keys() {
         FIELD(shape_function)));
     k.push_back(quantity("flip_fraction", D::none, closed(0.0, 1.0), "1",
                          "point velocity = f FLIP + (1 - f) PIC: 1 conserves energy to round-off but keeps point-to-point "
-                         "velocity noise; below 1 damps the noise, its kinetic energy becoming heat (docs/accuracy.md)",
+                         "velocity noise; below 1 damps the noise, its kinetic energy becoming heat; not energy-consistent "
+                         "in jetting porous flows (README, Method)",
                          FIELD(flip_fraction)));
     k.push_back(quantity("av_linear", D::none, non_negative(), "0.2",
                          "linear artificial viscosity coefficient A1", FIELD(av_linear)));

@@ -73,11 +73,10 @@ void remap_grid_velocity(Grid<D>& g, RowRange rows);
 
 // G2P of the point velocity. FLIP: v_p += dt sum N a_i. With Blend, v_p = f v_FLIP + (1 - f) v_PIC,
 // v_PIC = sum N v_i^{n+1}: the PIC part damps point-to-point velocity noise. The kinetic energy it
-// takes from a point, (|v_FLIP|^2 - |v_p|^2) / 2 per unit mass, is added to the point's internal
-// energy (the dissipation becomes heat where it happens), so total energy stays conserved to
-// about 1e-4 (not to round-off: the MUSL re-map then carries the blended velocities, which the
-// exact-work identity of velocity_gradient_work_and_move assumes are FLIP's). With Remap (MUSL),
-// also scatters m_p v_p^{n+1} back to the nodes at the same stencil.
+// removes becomes heat at the point (below), so total energy stays conserved to about 1e-4, not
+// to round-off (the MUSL re-map then carries the blended velocities, which the exact-work identity
+// of velocity_gradient_work_and_move assumes are FLIP's). With Remap (MUSL), also scatters
+// m_p v_p^{n+1} back to the nodes at the same stencil.
 template <int D, class Shape, bool Remap, bool Blend>
 void grid_to_particles_velocity(Particles<D>& pts, const StripBins& bins, Grid<D>& g, double dt,
                                 [[maybe_unused]] double flip_fraction) {
@@ -99,7 +98,10 @@ void grid_to_particles_velocity(Particles<D>& pts, const StripBins& bins, Grid<D
         v[d] = flip_fraction * v[d] + (1.0 - flip_fraction) * pic[d];
         k_blend += v[d] * v[d];
       }
-      pts.E[p] += 0.5 * (k_flip - k_blend);  // the kinetic energy PIC took from the point, as its heat
+      // The kinetic energy the blend took from the point becomes its heat. Where the blend speeds a
+      // point up (a jet's tip among slower neighbours) nothing is taken from its heat: that cooled
+      // jetting points below 0 K. The total energy then grows by what those points gained.
+      pts.E[p] += 0.5 * std::max(k_flip - k_blend, 0.0);
     }
     if constexpr (Remap) {
       Vec<D> mv;
