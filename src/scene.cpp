@@ -412,30 +412,41 @@ struct Entry {
   Origin at;
 };
 
+// The value of a spec key (region.NAME, probe.NAME): its first word names the kind, the rest are
+// lengths, "100 um" style, a word that is only a unit joining the number before it.
+struct SpecWords {
+  std::string kind;
+  std::vector<std::string> args;
+};
+SpecWords spec_words(const std::string& value) {
+  std::istringstream words(value);
+  SpecWords out;
+  words >> out.kind;
+  for (std::string t; words >> t;) {
+    const bool starts_numeric =
+        std::isdigit(static_cast<unsigned char>(t[0])) || t[0] == '.' || t[0] == '-' || t[0] == '+';
+    if (!starts_numeric && !out.args.empty()) out.args.back() += " " + t;
+    else out.args.push_back(t);
+  }
+  return out;
+}
+
+// A length argument of a spec key; a bad one is an error naming the key.
+double spec_length(const Entry& e, const std::string& text) {
+  try {
+    return parse_quantity(text, Dimension::length);
+  } catch (const std::invalid_argument& ex) {
+    throw error_at(e.at, e.key, ex.what());
+  }
+}
+
 // A region key: region.NAME = bottom Y1 H | top H | band Y1 Y2.
 RegionSpec parse_region(const Entry& e) {
   RegionSpec r;
   r.name = e.key.substr(std::string("region.").size());
   if (r.name.empty()) throw error_at(e.at, e.key, "a region needs a name: region.NAME = ...");
-  std::istringstream words(e.value);
-  std::vector<std::string> w;
-  for (std::string t; words >> t;) w.push_back(t);
-  // Rejoin "100 um" style tokens: a word that is only a unit belongs to the number before it.
-  std::vector<std::string> args;
-  for (std::size_t i = 1; i < w.size(); ++i) {
-    const bool starts_numeric = std::isdigit(static_cast<unsigned char>(w[i][0])) || w[i][0] == '.' ||
-                                w[i][0] == '-' || w[i][0] == '+';
-    if (!starts_numeric && !args.empty()) args.back() += " " + w[i];
-    else args.push_back(w[i]);
-  }
-  auto length = [&](const std::string& t) {
-    try {
-      return parse_quantity(t, Dimension::length);
-    } catch (const std::invalid_argument& ex) {
-      throw error_at(e.at, e.key, ex.what());
-    }
-  };
-  const std::string kind = w.empty() ? "" : w[0];
+  const auto [kind, args] = spec_words(e.value);
+  auto length = [&](const std::string& t) { return spec_length(e, t); };
   if (kind == "bottom" && args.size() == 2) {
     r.kind = RegionSpec::Kind::bottom;
     r.a = length(args[0]);
@@ -461,27 +472,13 @@ ProbeSpec parse_probe(const Entry& e) {
   ProbeSpec p;
   p.name = e.key.substr(std::string("probe.").size());
   if (p.name.empty()) throw error_at(e.at, e.key, "a probe needs a name: probe.NAME = ...");
-  std::istringstream words(e.value);
-  std::vector<std::string> w;
-  for (std::string t; words >> t;) w.push_back(t);
-  std::vector<std::string> args;  // "100 um" style: a unit word joins the number before it
-  for (std::size_t i = 1; i < w.size(); ++i) {
-    const bool starts_numeric = std::isdigit(static_cast<unsigned char>(w[i][0])) || w[i][0] == '.' ||
-                                w[i][0] == '-' || w[i][0] == '+';
-    if (!starts_numeric && !args.empty()) args.back() += " " + w[i];
-    else args.push_back(w[i]);
-  }
-  const std::string kind = w.empty() ? "" : w[0];
+  const auto [kind, args] = spec_words(e.value);
   if (kind == "surface" && args.empty()) {
     p.kind = ProbeSpec::Kind::surface;
   } else if (kind == "point" && args.size() == 2) {
     p.kind = ProbeSpec::Kind::point;
-    try {
-      p.x = parse_quantity(args[0], Dimension::length);
-      p.y = parse_quantity(args[1], Dimension::length);
-    } catch (const std::invalid_argument& ex) {
-      throw error_at(e.at, e.key, ex.what());
-    }
+    p.x = spec_length(e, args[0]);
+    p.y = spec_length(e, args[1]);
   } else {
     throw error_at(e.at, e.key, "expected 'surface' or 'point X Y', got '" + e.value + "'");
   }
