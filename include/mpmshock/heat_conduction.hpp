@@ -53,8 +53,11 @@ void conduct_heat(Particles<D>& pts, const StripBins& bins, const Grid<D>& g, co
 #pragma omp parallel for schedule(static)
   for (std::size_t i = first; i < last; ++i) h.node_heat[i] = h.node_rate[i] = 0.0;
 
+  // The step's scratch (work is written later in the step) holds T_p, then d_p.
+  std::vector<double>& T = pts.work;
   bins.scatter([&](std::size_t p) {  // 1. m_i T_i
-    const double mT = pts.m[p] * thermal.temperature(pts.material_J(p), pts.thermal_energy(p));
+    T[p] = thermal.temperature(pts.material_J(p), pts.thermal_energy(p));
+    const double mT = pts.m[p] * T[p];
     for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
                   [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * mT; });
   });
@@ -71,14 +74,14 @@ void conduct_heat(Particles<D>& pts, const StripBins& bins, const Grid<D>& g, co
     for_each_node(st, geo, [&](std::size_t i, double, const Vec<D>& dN) { h.node_rate[i] -= kV * dot(grad, dN); });
   });
 
-  // 4a. d_p = T_p - sum_i N_ip T_i, kept in the step's scratch (work is written later in the step).
+  // 4a. d_p = T_p - sum_i N_ip T_i, in place of T_p.
   std::vector<double>& d = pts.work;
 #pragma omp parallel for schedule(dynamic, kChunk)
   for (std::size_t p = 0; p < pts.size(); ++p) {
     double T_grid = 0.0;
     for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
                   [&](std::size_t i, double N, const Vec<D>&) { T_grid += N * h.node_heat[i]; });
-    d[p] = thermal.temperature(pts.material_J(p), pts.thermal_energy(p)) - T_grid;
+    d[p] = T[p] - T_grid;
   }
   // 4b. The part of d the grid resolves (projection and interpolation smooth a smooth T by
   // O(h^2 grad^2 T), which is not sub-cell structure): d_i = sum_p N_ip m_p d_p / m_i.
