@@ -13,7 +13,7 @@ import matplotlib
 
 from . import timeseries
 from .compare import plot_compare
-from .errors import PostError
+from .errors import PostError, argument_type
 from .field import plot_field
 from .hist import moments_table, plot_histograms
 from .probes import PROBE_QUANTITIES, plot_probes
@@ -29,15 +29,7 @@ def _list(text):
     return [item.strip() for item in text.split(",") if item.strip()]
 
 
-def _argument(parse):
-    """An argparse type from a parser that raises PostError, so that bad values are usage errors."""
-    def convert(text):
-        try:
-            return parse(text)
-        except (PostError, ValueError) as e:
-            raise argparse.ArgumentTypeError(str(e)) from None
-    convert.__name__ = parse.__name__
-    return convert
+_argument = argument_type
 
 
 def _numbers(count, what):

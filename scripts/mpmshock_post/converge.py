@@ -56,7 +56,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import PostError
+from .errors import PostError, argument_type
 from .reader import Run
 from .scene import Scene
 from .scene_input import key_defaults, mpmshock_binary, parse_value, requested_scene, scene_differences
@@ -471,15 +471,7 @@ def _values(text):
 
 
 def build_parser():
-    def checked(parse):
-        def convert(text):
-            try:
-                return parse(text)
-            except (PostError, ValueError) as e:
-                raise argparse.ArgumentTypeError(str(e)) from None
-        convert.__name__ = parse.__name__
-        return convert
-
+    checked = argument_type
     parser = argparse.ArgumentParser(prog="mpmshock-converge", description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter,
                                      epilog=__doc__.split("\n\n", 2)[2])

@@ -11,7 +11,7 @@ the particle velocity after it).
 import numpy as np
 from matplotlib.figure import Figure
 
-from .errors import PostError
+from .errors import PostError, select_named
 from .labels import case_label, run_labels
 from .style import COLORS, LINESTYLES, MARKERS, mark_every, note_missing, time_axis
 from .timeseries import in_time_range
@@ -22,16 +22,7 @@ PROBE_QUANTITIES = ("velocity_y", "velocity_x", "pressure", "density", "temperat
 
 def select_probes(run, names):
     """The requested probes' series from probes.csv (all of them when `names` is empty)."""
-    series = run.probes()
-    if not series:
-        raise PostError(f"{run.path / 'probes.csv'} has no rows yet")
-    if not names:
-        return series
-    unknown = [name for name in names if name not in series]
-    if unknown:
-        raise PostError(f"no probe {', '.join(repr(n) for n in unknown)} in {run.path / 'probes.csv'} "
-                        f"(probes: {', '.join(series)})")
-    return {name: series[name] for name in names}
+    return select_named(run.probes(), names, run.path / "probes.csv", "probe")
 
 
 def _all_surface(runs, names):

@@ -3,7 +3,7 @@
 
 import numpy as np
 
-from .errors import PostError
+from .errors import select_named
 from .labels import case_label
 from .style import mark_every, note_missing, panel_figure, region_styles, short_ticks, time_axis
 from .units import TIME, quantity
@@ -14,16 +14,7 @@ DISSIPATION = ("rot2", "div2", "strain_rate2")
 
 def select_regions(run, names):
     """The requested regions' series from regions.csv (all of them when `names` is empty)."""
-    series = run.regions()
-    if not series:
-        raise PostError(f"{run.path / 'regions.csv'} has no rows yet")
-    if not names:
-        return series
-    unknown = [name for name in names if name not in series]
-    if unknown:
-        raise PostError(f"no region {', '.join(repr(n) for n in unknown)} in {run.path / 'regions.csv'} "
-                        f"(regions: {', '.join(series)})")
-    return {name: series[name] for name in names}
+    return select_named(run.regions(), names, run.path / "regions.csv", "region")
 
 
 def in_time_range(columns, trange):
