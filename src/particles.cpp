@@ -10,7 +10,7 @@ void for_each_field(P& p, F&& f) {
   f(p.x), f(p.v), f(p.m), f(p.V0), f(p.F), f(p.L), f(p.work), f(p.E), f(p.P), f(p.q), f(p.id), f(p.body);
   if (p.has_strength()) f(p.s), f(p.eps_p);
   if (p.has_back_stress()) f(p.alpha);
-  if (p.has_failure()) f(p.failure_J);
+  if (p.has_failure()) f(p.failure_J), f(p.damage);
   if (p.stores_cold_work()) f(p.E_stored);
 }
 
@@ -31,7 +31,10 @@ void Particles<D>::add(const Vec<D>& position, const Vec<D>& velocity, double ma
     eps_p.push_back(0.0);
   }
   if (back_stress_) alpha.push_back({});
-  if (failure_) failure_J.push_back(0.0);
+  if (failure_) {
+    failure_J.push_back(0.0);
+    damage.push_back(0.0);
+  }
   if (stored_) E_stored.push_back(0.0);
   body.push_back(b);
 }
@@ -49,6 +52,7 @@ template <int D>
 void Particles<D>::enable_failure(bool on) {
   failure_ = on;
   failure_J.assign(on ? size() : 0, 0.0);
+  damage.assign(on ? size() : 0, 0.0);
 }
 
 template <int D>

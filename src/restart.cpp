@@ -127,13 +127,16 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
     const std::size_t count = values.size() * sizeof(values[0]) / sizeof(double);
     return std::all_of(d, d + count, [](double v) { return std::isfinite(v); });
   };
-  for (const auto* field : {&p.m, &p.V0, &p.E, &p.P, &p.q, &p.eps_p, &p.failure_J})
+  for (const auto* field : {&p.m, &p.V0, &p.E, &p.P, &p.q, &p.eps_p, &p.failure_J, &p.damage})
     if (!finite(*field)) bad("it holds a value that is not a finite number (NaN or infinity)");
   if (p.has_failure() != scene.effects.spall)
     bad(std::string("its scene has spall = ") + (scene.effects.spall ? "on" : "off") + " but it holds " +
         (p.has_failure() ? "" : "no ") + "failure state");
   if (std::any_of(p.failure_J.begin(), p.failure_J.end(), [](double j) { return j < 0.0; }))
     bad("it holds a negative failure_J");
+  for (std::size_t q = 0; q < p.damage.size(); ++q)
+    if (!(p.damage[q] >= 0.0 && p.damage[q] <= 1.0) || (p.damage[q] > 0.0 && p.failure_J[q] == 0.0))
+      bad("it holds a damage outside [0, 1], or damage at a point that has not failed");
   if (!finite(p.x) || !finite(p.v) || !finite(p.F) || !finite(p.L) || !finite(p.s) || !finite(p.alpha))
     bad("it holds a value that is not a finite number (NaN or infinity)");
   std::visit(

@@ -261,11 +261,16 @@ const std::vector<Key>& keys() {
                      "the paper's temperature T = T_H(V) + (E - E_H)/c_v; off: no temperature is computed",
                      FIELD(effects.thermal)));
     k.push_back(flag("spall", "off",
-                     "failure in tension: a point whose largest principal stress exceeds spall_strength carries "
-                     "no tension or shear from then on, so material separates",
+                     "failure in tension: a point whose largest principal stress reaches spall_strength opens "
+                     "with its tension held at the strength and no shear, and separates (no tension) once its "
+                     "void fraction reaches spall_void_fraction",
                      FIELD(effects.spall)));
     k.push_back(quantity("spall_strength", D::pressure, Range{0.0, 1e12, true, false}, "1.2 GPa",
                          "spall strength (aluminium alloys: 1.0-1.6 GPa at 1e4-1e6 /s)", FIELD(spall_strength)));
+    k.push_back(quantity("spall_void_fraction", D::none, Range{0.0, 1.0, false, true}, "0.15",
+                         "void fraction 1 - J_f/J at which an opening point separates (0: at once; 0.15: void "
+                         "coalescence in ductile metals)",
+                         FIELD(spall_void_fraction)));
     k.push_back(flag("heat_conduction", "off",
                      "Fourier heat conduction between points through the grid, with thermal_conductivity "
                      "(needs thermal = on)",

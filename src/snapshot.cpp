@@ -94,8 +94,9 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
     scalar[q] = thermal && thermal->temperature(p.material_J(q), p.thermal_energy(q)) >= melt.at(p.material_J(q));
   doubles("melted", scalar.data(), {N}, "",
           "1 where T is at or above the Lindemann melt temperature T_m(J), else 0 (0 with thermal = off)", chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = p.failed(q) ? 1.0 : 0.0;
-  doubles("damage", scalar.data(), {N}, "", "0 intact, 1 failed in tension (spall = on; 0 without)", chosen);
+  for (std::size_t q = 0; q < n; ++q) scalar[q] = p.has_failure() ? p.damage[q] : 0.0;
+  doubles("damage", scalar.data(), {N}, "",
+          "0 intact, rising from 0 while it opens in tension, 1 separated (spall = on; 0 without)", chosen);
   doubles("deformation_gradient", flat(p.F), {N, d, d}, "",
           D == 2 ? "F, in-plane (F_zz = 1), F[i][j] = dx_i/dX_j" : "F[i][j] = dx_i/dX_j", chosen);
   doubles("velocity_gradient", flat(p.L), {N, d, d}, "1/s", "L = grad v of the last step, L[i][j] = dv_i/dx_j",
@@ -144,7 +145,7 @@ void write_restart(hid_t file, const Particles<D>& p, const RunState& run) {
                       "plastic work stored as cold work, not heat (taylor_quinney < 1)");
   if (p.has_failure())
     h5::write_dataset(g, "failure_J", H5T_NATIVE_DOUBLE, p.failure_J.data(), {N}, "",
-                      "0 while intact; the volume ratio J at which the point failed in tension");
+                      "0 while intact; the volume ratio J at which the point began to open in tension");
   if (p.has_back_stress())
     h5::write_dataset(g, "back_stress", H5T_NATIVE_DOUBLE, flat(p.alpha), {N, C}, "Pa",
                       (std::string("back stress alpha (kinematic hardening): ") + components).c_str());
@@ -471,7 +472,10 @@ Restart<D> read_state(const std::string& path) {
     p.enable_cold_work(h5::has_link(g, "stored_energy"));
     if (p.stores_cold_work()) p.E_stored = h5::read_doubles(g, "stored_energy", n, {});
     p.enable_failure(h5::has_link(g, "failure_J"));
-    if (p.has_failure()) p.failure_J = h5::read_doubles(g, "failure_J", n, {});
+    if (p.has_failure()) {
+      p.failure_J = h5::read_doubles(g, "failure_J", n, {});
+      p.damage = h5::read_doubles(f, "/particles/damage", n, {});
+    }
     return r;
   }
 }

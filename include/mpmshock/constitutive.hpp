@@ -25,7 +25,8 @@ struct PointState {
   double E, P, q;
   Deviator<D> s, alpha;
   double eps_p;
-  double failure_J = 0.0;      // in/out with spall: 0 while intact, else the J it failed at
+  double failure_J = 0.0;      // in/out with spall: 0 while intact, else the J it began to open at
+  double damage = 0.0;         // in/out with spall: 0 intact ... 1 separated (spall.hpp)
   double E_stored = 0.0;       // in/out: the cold work stored in E [J/kg]
   double work_mismatch = 0.0;  // out: work minus the trapezoid-rule work of the point's own deformation
 };
@@ -83,10 +84,12 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
   st.P = eos_state.pressure;
   if (!std::isfinite(st.E) || !std::isfinite(st.P)) return -1.0;
   if constexpr (Failure::active) {
-    // Fails when its tension exceeds the strength; a failed point carries no tension, no shear.
+    // Opens when its tension exceeds the strength: no shear from then on, its tension held at the
+    // strength until it has separated, none after.
     if (st.failure_J == 0.0 && failure.exceeded(st.s, st.P)) st.failure_J = J;
     if (st.failure_J > 0.0) {
-      st.P = std::max(st.P, 0.0);
+      st.damage = failure.damage(st.failure_J, J, st.damage);
+      st.P = failure.pressure(st.P, st.damage);
       st.s = {};
       st.alpha = {};
     }
@@ -136,7 +139,10 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
       st.eps_p = pts.eps_p[p];
     }
     if constexpr (Strength::has_back_stress) st.alpha = pts.alpha[p];
-    if constexpr (Failure::active) st.failure_J = pts.failure_J[p];
+    if constexpr (Failure::active) {
+      st.failure_J = pts.failure_J[p];
+      st.damage = pts.damage[p];
+    }
     if constexpr (Strength::has_stress)
       if (stores) st.E_stored = pts.E_stored[p];
     const double signal =
@@ -150,7 +156,10 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
       pts.eps_p[p] = st.eps_p;
     }
     if constexpr (Strength::has_back_stress) pts.alpha[p] = st.alpha;
-    if constexpr (Failure::active) pts.failure_J[p] = st.failure_J;
+    if constexpr (Failure::active) {
+      pts.failure_J[p] = st.failure_J;
+      pts.damage[p] = st.damage;
+    }
     if constexpr (Strength::has_stress)
       if (stores) pts.E_stored[p] = st.E_stored;
     mismatch[p / kChunk] += pts.m[p] * st.work_mismatch;

@@ -9,7 +9,8 @@
 //   s, alpha   deviatoric stress and back stress [Pa] (with strength; alpha only with kinematic
 //              hardening)
 //   eps_p      effective plastic strain (with strength)
-//   failure_J  0 while intact; the J at which the point failed (with spall)
+//   failure_J  0 while intact; the J at which the point began to open in tension (with spall)
+//   damage     0 intact, rising while it opens, 1 separated (with spall; spall.hpp)
 //   E_stored   the part of E stored as cold work, not heat [J/kg] (taylor_quinney < 1)
 //   work       the work of the last step's nodal forces on the point [J/kg] (scratch of a step)
 #pragma once
@@ -32,7 +33,7 @@ struct Particles {
   std::vector<double> work, E, P, q;
   std::vector<Deviator<D>> s, alpha;
   std::vector<double> eps_p;
-  std::vector<double> failure_J;
+  std::vector<double> failure_J, damage;
   std::vector<double> E_stored;
   std::vector<std::uint32_t> id;  // stable index, the order points were created in
   std::vector<Body> body;
@@ -49,7 +50,7 @@ struct Particles {
   // J = det F: the volume the point occupies over its reference volume.
   double J(std::size_t p) const { return det(F[p]); }
   // The material's own volume ratio: J, except for a failed point, whose expansion beyond the J it
-  // failed at is opened space (spall.hpp). Density, pressure and temperature are the material's.
+  // began to open at is opened space (spall.hpp). Density, pressure and temperature are the material's.
   double material_J(std::size_t p) const { return failed(p) ? std::min(J(p), failure_J[p]) : J(p); }
   double volume(std::size_t p) const { return V0[p] * J(p); }
   double density(std::size_t p) const { return m[p] / (V0[p] * material_J(p)); }
@@ -58,7 +59,7 @@ struct Particles {
   void add(const Vec<D>& position, const Vec<D>& velocity, double mass, double volume0, Body b);
   // Allocates (or drops) the strength fields s and eps_p, and the back stress alpha.
   void enable_strength(bool on, bool back_stress);
-  // Allocates (or drops) failure_J, all intact.
+  // Allocates (or drops) failure_J and damage, all intact.
   void enable_failure(bool on);
   // Allocates (or drops) E_stored, all zero.
   void enable_cold_work(bool on);

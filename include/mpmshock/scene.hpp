@@ -73,6 +73,7 @@ struct Scene {
   UpdateScheme update_scheme = UpdateScheme::musl;
   ShapeFunction shape_function = ShapeFunction::bspline2;
   double spall_strength = 1.2e9;  // [Pa] tension at which a point fails (spall = on)
+  double spall_void_fraction = 0.15;  // void fraction at which a failed point separates (spall.hpp)
   double taylor_quinney = 1.0;    // share of plastic work that becomes heat
   double softening_temperature = 1923.0;  // [K] where linear softening would reach zero
   double melt_temperature = 1220.0;       // [K] T_m0, the melt temperature at J = 1

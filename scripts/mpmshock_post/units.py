@@ -32,7 +32,7 @@ QUANTITIES = {
     "plastic_strain": Quantity(r"$\varepsilon_p$", "", 1.0),
     "internal_energy": Quantity("$E$", "kJ/g", 1e-6),
     "viscous_pressure": Quantity("$q$", "GPa", 1e-9),
-    "damage": Quantity("damage $D$", "", 1.0),  # 0 intact, 1 failed in tension (spall = on)
+    "damage": Quantity("damage $D$", "", 1.0),  # 0 intact ... 1 separated in tension (spall = on)
 }
 
 TIME = Quantity("$t$", "ns", 1e9)

@@ -8,9 +8,9 @@ target, each body at 150 m/s toward y = 0, in a 40 um column (2560 points, under
 shock (5551 m/s) reaches the target's free surface at about 216 ns, which then moves at +150 m/s;
 the releases from the flyer's back and from the free surface meet 0.4 mm below the free surface,
 at y = 0.8 mm, near 300 ns, where the tension reaches spall_strength (1.2 GPa). With spall on the
-layer above flies off and the free surface keeps moving up (pullback to about 78 m/s, then ringing
-around 150 m/s); with spall off the target holds together and its surface is pulled back to
-about -150 m/s. Four runs (one of them a restart) and seven mpmshock-plot calls: about 8 s on 2
+material there opens, holding the strength, and separates; the free surface is pulled back by
+2 sigma_s / (rho0 c0) = 166 m/s (to about -15 m/s) before the spall signal turns it up again; with
+spall off the target holds together and its surface is pulled back to about -150 m/s. Four runs (one of them a restart) and seven mpmshock-plot calls: about 8 s on 2
 cores.
 """
 
@@ -186,10 +186,14 @@ def test_free_surface_velocity(runs):
         plateau = np.median(u[(t >= arrival + 10e-9) & (t <= arrival + 100e-9)])
         check(abs(plateau - VELOCITY) < 0.15 * VELOCITY,
               f"{name}: free surface at {plateau:.1f} m/s after the shock reflects, expected about +{VELOCITY}")
-    # The spall signal: with spall the surface is pulled back only part way, without it all the way.
+    # The spall signal: with spall the surface is pulled back by 2 sigma_s / (rho0 c0), the acoustic
+    # relation (test_spall checks it to 0.1 GPa in its own run), without it all the way.
     late = spall["time"] > surface_arrival(spall) + 10e-9
-    check(spall["velocity_y"][late].min() > 0.3 * VELOCITY,
-          f"spall on: the free surface falls back to {spall['velocity_y'][late].min():.1f} m/s")
+    plateau = np.median(spall["velocity_y"][late & (spall["time"] < surface_arrival(spall) + 100e-9)])
+    strength = scene["density"] * scene["sound_speed"] * (plateau - spall["velocity_y"][late].min()) / 2
+    check(abs(strength - scene["spall_strength"]) < 0.1e9,
+          f"spall on: the pullback gives {strength / 1e9:.3f} GPa, spall_strength is "
+          f"{scene['spall_strength'] / 1e9:.3f} GPa")
     late = no_spall["time"] > surface_arrival(no_spall) + 10e-9
     check(no_spall["velocity_y"][late].min() < -0.5 * VELOCITY,
           f"spall off: the free surface is pulled back only to {no_spall['velocity_y'][late].min():.1f} m/s")
@@ -201,15 +205,15 @@ def test_damage(runs):
     spall = reader.Run(runs.spall)
     damage = [spall.snapshot(info.index)["damage"] for info in spall.snapshots()]
     for info, values in zip(spall.snapshots(), damage):
-        check(np.isin(values, (0.0, 1.0)).all(), f"{info.path}: damage values other than 0 and 1: {np.unique(values)}")
+        check(np.all((values >= 0.0) & (values <= 1.0)), f"{info.path}: damage outside [0, 1]")
         with h5py.File(info.path, "r") as f:
             check("failure_J" in f["restart"], f"{info.path}: no /restart/failure_J with spall on")
     check(not damage[0].any(), "damage at t = 0")
-    check(damage[-1].sum() > 0, "spall on: no point failed")
+    check(np.any(damage[-1] == 1.0), "spall on: no point separated")
     check(all(np.all(later >= earlier) for earlier, later in zip(damage, damage[1:])), "a failed point healed")
     # The points that fail lie around the spall plane, 0.4 mm (the flyer's thickness) below the free surface.
     y0 = spall.snapshot(0)["position"][:, 1]
-    failed = damage[-1] == 1
+    failed = damage[-1] > 0
     plane = spall.scene["target_height"] - spall.scene["flyer_height"]
     check(abs(np.median(y0[failed]) - plane) < 0.1e-3, f"the failed points start around y = "
           f"{np.median(y0[failed]) * 1e3:.3f} mm, the spall plane is at {plane * 1e3:.3f} mm")
