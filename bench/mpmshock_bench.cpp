@@ -5,17 +5,28 @@
 //
 // usage: mpmshock_bench [--points N] [--steps N] [--repeats N] [--threads N]
 //        mpmshock_bench threads [--repeats N]
+//        mpmshock_bench speed [--repeats N] [--max-points N]
 //
 // The `threads` mode measures the default scene and a 640 k-point solid scene on 1 thread, on all
 // threads, and on all threads with the thread tuner (how mpmshock runs), each on an idle machine
 // and with a busy process beside it (a loop on one core, started and stopped by the benchmark).
+//
+// The `speed` mode (issue 11) measures the speed scene, configs/speed.scene (solid plates, 5 um
+// cells, 2 x 2 points per cell, +-1000 m/s), at 50 k, 640 k, 2.5 M and 10 M points (the width
+// scaled) on 1 thread and on all threads: point-steps per second, bytes per point (the peak
+// resident memory of a process that ran only that case, over its points), the machine's memory
+// bandwidth (a STREAM triad in the same run) and the share of that bound the step reaches under a
+// model of the bytes each step must move; and the share of point-steps spent on material that
+// nothing has reached yet (ahead of the elastic precursor).
 #include <omp.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -145,12 +156,203 @@ int threads_mode(int repeats) {
   return 0;
 }
 
+// --- speed mode -------------------------------------------------------------------------------
+
+// configs/speed.scene with its width set to `width`.
+Scene speed_scene(double width) {
+  std::ifstream in(MPMSHOCK_SOURCE_DIR "/configs/speed.scene");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.empty()) {
+    std::fprintf(stderr, "cannot read %s\n", MPMSHOCK_SOURCE_DIR "/configs/speed.scene");
+    std::exit(1);
+  }
+  char w[64];
+  std::snprintf(w, sizeof w, "width=%.9g", width);
+  return parse_scene(text, "configs/speed.scene", {w});
+}
+
+struct SpeedResult {
+  double rate = 0.0;             // point-steps per second
+  double peak_bytes = 0.0;       // peak resident memory of the process [bytes]
+  double layout_bytes = 0.0;     // bytes per point of the particle layout (Particles::bytes_per_point)
+  double modelled_traffic = 0.0; // bytes a step must move per point, by the model below
+  std::size_t points = 0;
+};
+
+double peak_resident_bytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) * 1024.0;
+  return 0.0;
+}
+
+// The bytes one step must move per point if each pass over the points reads and writes only the
+// fields it needs, once, and the grid stays in cache (STREAM's convention: a written byte counts
+// once). Passes (transfer.hpp, constitutive.hpp): bin (x), P2G (x, F, m, V0, v, s, P, q), G2P with
+// the MUSL re-map (x, F, m, v; writes v), gradient, work and move (x, F, V0, m, P, q, s; writes L,
+// work, x), point update (L, work, F, E, P, q, s, eps_p; writes F, E, P, q, s, eps_p).
+template <int D>
+double modelled_traffic(const Particles<D>& p) {
+  const double x = sizeof(Vec<D>), v = sizeof(Vec<D>), F = sizeof(Mat<D>), L = sizeof(Mat<D>), d = sizeof(double);
+  const double s = p.has_strength() ? sizeof(Deviator<D>) + d : 0.0;  // s and eps_p
+  const double bin = x + 4.0;                                           // + the point's bin index
+  const double p2g = x + F + 2 * d + v + s + 2 * d;
+  const double g2p = x + F + d + v + v;
+  const double move = x + F + 2 * d + 2 * d + s + (L + d + x);
+  const double update = (L + d + F + 3 * d + s) + (F + 3 * d + s);
+  return bin + p2g + g2p + move + update;
+}
+
+// Runs `measure` in a child process and returns what it wrote. The parent must not have started
+// an OpenMP thread team before (libgomp's pool does not survive fork).
+template <class Result, class Measure>
+Result in_child(Measure&& measure) {
+  int fd[2];
+  if (pipe(fd) != 0) std::exit(1);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    const Result r = measure();
+    if (write(fd[1], &r, sizeof r) != static_cast<ssize_t>(sizeof r)) _exit(1);
+    _exit(0);
+  }
+  close(fd[1]);
+  Result r{};
+  const bool got = read(fd[0], &r, sizeof r) == static_cast<ssize_t>(sizeof r);
+  close(fd[0]);
+  waitpid(pid, nullptr, 0);
+  if (!got) {
+    std::fprintf(stderr, "mpmshock_bench speed: a measurement failed\n");
+    std::exit(1);
+  }
+  return r;
+}
+
+// Runs the speed scene at `width` with `threads` threads in a child process (so its peak memory
+// is its own) and returns what it measured.
+SpeedResult measure_speed(double width, int threads, int steps) {
+  return in_child<SpeedResult>([&] {
+    omp_set_num_threads(threads);
+    const Scene scene = speed_scene(width);
+    SpeedResult r;
+    {
+      InitialState<2> initial = build_initial_state<2>(scene);
+      Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
+      r.points = sim.particles().size();
+      r.layout_bytes = static_cast<double>(sim.particles().bytes_per_point());
+      r.modelled_traffic = modelled_traffic(sim.particles());
+      for (int k = 0; k < 3; ++k) sim.step(sim.stable_time_step());  // first touch, shock formed
+      const auto t0 = WallClock::now();
+      for (int k = 0; k < steps; ++k) sim.step(sim.stable_time_step());
+      r.rate = static_cast<double>(r.points) * steps / std::chrono::duration<double>(WallClock::now() - t0).count();
+      r.peak_bytes = peak_resident_bytes();
+    }
+    return r;
+  });
+}
+
+// STREAM triad a = b + s c over arrays far larger than the caches, all threads, best of `repeats`:
+// the memory bandwidth [bytes/s] in STREAM's convention (3 x 8 bytes per element).
+double triad_bandwidth(int repeats) {
+  const std::size_t n = std::size_t{1} << 26;  // 512 MiB per array, beyond any cache
+  std::vector<double> a(n), b(n), c(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) a[i] = 0.0, b[i] = 1.0, c[i] = 2.0;
+  double best = 0.0;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = WallClock::now();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) a[i] = b[i] + 3.0 * c[i];
+    const double seconds = std::chrono::duration<double>(WallClock::now() - t0).count();
+    best = std::max(best, 3.0 * sizeof(double) * n / seconds);
+  }
+  if (a[n / 2] != 7.0) std::exit(1);  // keeps the loop
+  return best;
+}
+
+// The share of point-steps of a run of `scene` spent on points that nothing has reached yet: their
+// deformation gradient still the identity and their velocity still the initial one (to round-off).
+double unreached_share(const Scene& scene) {
+  InitialState<2> initial = build_initial_state<2>(scene);
+  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
+  const std::vector<Vec<2>> v0 = sim.particles().v;
+  double unreached = 0.0, total = 0.0;
+  while (sim.time() < scene.end_time * (1 - 1e-12)) {
+    sim.step(std::min(sim.stable_time_step(), scene.end_time - sim.time()));
+    const Particles<2>& p = sim.particles();
+    std::size_t n = 0;
+    for (std::size_t q = 0; q < p.size(); ++q) {
+      const Mat<2>& F = p.F[q];
+      const bool still = std::abs(F(0, 0) - 1) < 1e-12 && std::abs(F(1, 1) - 1) < 1e-12 &&
+                         std::abs(F(0, 1)) < 1e-12 && std::abs(F(1, 0)) < 1e-12 &&
+                         std::abs(p.v[q][1] - v0[q][1]) < 1e-9 && std::abs(p.v[q][0] - v0[q][0]) < 1e-9;
+      n += still ? 1 : 0;
+    }
+    unreached += static_cast<double>(n);
+    total += static_cast<double>(p.size());
+  }
+  return unreached / total;
+}
+
+int speed_mode(int repeats, double max_points) {
+  const int all = omp_get_max_threads();
+  // Widths (5 um cells, 4 mm of material, 4 points per cell: 3200 points per cell column).
+  struct Size {
+    const char* name;
+    double width;
+    int steps;
+  };
+  std::vector<Size> sizes = {{"50 k", 80e-6, 300}, {"640 k", 1e-3, 40}, {"2.5 M", 3.9e-3, 12}, {"10 M", 15.6e-3, 4}};
+  sizes.erase(std::remove_if(sizes.begin(), sizes.end(),
+                             [&](const Size& s) { return s.width / 5e-6 * 3200 > max_points * 1.01; }),
+              sizes.end());
+  const double bandwidth = in_child<double>([] { return triad_bandwidth(5); });
+  std::printf("mpmshock_bench speed: configs/speed.scene (solid plates, 5 um cells, 2 x 2 points per cell, "
+              "+-1000 m/s), width scaled; best of %d; %d threads at most\n",
+              repeats, all);
+  std::printf("memory bandwidth (STREAM triad, %d threads): %.2f GB/s\n\n", all, bandwidth / 1e9);
+  std::printf("| points | threads | point-steps/s (M) | ns per point-step | bytes/point (peak RSS) | "
+              "bytes/point (layout) | modelled bytes moved per point-step | share of the bandwidth bound |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
+  for (const Size& size : sizes)
+    for (int threads : {1, all}) {
+      SpeedResult best;
+      for (int r = 0; r < repeats; ++r) {
+        const SpeedResult m = measure_speed(size.width, threads, size.steps);
+        if (m.rate > best.rate) best = m;
+      }
+      const double bound = bandwidth / best.modelled_traffic;  // point-steps/s if only bandwidth counted
+      std::printf("| %zu | %d | %.2f | %.1f | %.0f | %.0f | %.0f | %.1f %% |\n", best.points, threads,
+                  best.rate / 1e6, 1e9 / best.rate, best.peak_bytes / best.points, best.layout_bytes,
+                  best.modelled_traffic, 100.0 * best.rate / bound);
+      std::fflush(stdout);
+      if (all == 1) break;
+    }
+  // The share ahead of the elastic precursor does not depend on the width: a narrow column of the
+  // same plates, run to the end.
+  const double share = unreached_share(speed_scene(50e-6));
+  std::printf("\nshare of point-steps on material nothing has reached yet (F = I, v = v0), speed scene to "
+              "250 ns: %.1f %%\n",
+              100.0 * share);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc >= 2 && !std::strcmp(argv[1], "threads")) {
     const int repeats = (argc >= 4 && !std::strcmp(argv[2], "--repeats")) ? std::atoi(argv[3]) : 2;
     return threads_mode(std::max(1, repeats));
+  }
+  if (argc >= 2 && !std::strcmp(argv[1], "speed")) {
+    int repeats = 2;
+    double max_points = 1e7;
+    for (int i = 2; i + 1 < argc; i += 2) {
+      if (!std::strcmp(argv[i], "--repeats")) repeats = std::max(1, std::atoi(argv[i + 1]));
+      else if (!std::strcmp(argv[i], "--max-points")) max_points = std::atof(argv[i + 1]);
+    }
+    return speed_mode(repeats, max_points);
   }
   double width = 500e-6;
   int steps = 200, repeats = 3;
