@@ -62,13 +62,8 @@ std::string base_scene(double width) {
   return text;
 }
 
-// Runs `steps` steps after a 100 ns warm-up (so the shock and void collapse are under way).
-double point_steps_per_second(const Scene& scene, int steps, std::size_t& points, std::size_t& bytes) {
-  InitialState<2> initial = build_initial_state<2>(scene);
-  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
-  points = sim.particles().size();
-  bytes = sim.particles().bytes_per_point();
-  while (sim.time() < 100e-9) sim.step(sim.stable_time_step());
+// Point-steps per second of `steps` steps of `sim`; a step that fails ends the benchmark.
+double timed_steps(Simulation<2>& sim, int steps) {
   const auto t0 = WallClock::now();
   for (int k = 0; k < steps; ++k) {
     const StepStatus s = sim.step(sim.stable_time_step());
@@ -78,7 +73,17 @@ double point_steps_per_second(const Scene& scene, int steps, std::size_t& points
     }
   }
   const double seconds = std::chrono::duration<double>(WallClock::now() - t0).count();
-  return static_cast<double>(points) * steps / seconds;
+  return static_cast<double>(sim.particles().size()) * steps / seconds;
+}
+
+// Runs `steps` steps after a 100 ns warm-up (so the shock and void collapse are under way).
+double point_steps_per_second(const Scene& scene, int steps, std::size_t& points, std::size_t& bytes) {
+  InitialState<2> initial = build_initial_state<2>(scene);
+  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
+  points = sim.particles().size();
+  bytes = sim.particles().bytes_per_point();
+  while (sim.time() < 100e-9) sim.step(sim.stable_time_step());
+  return timed_steps(sim, steps);
 }
 
 // A process that keeps one core busy until it is killed: the competing load of `threads`.
@@ -243,9 +248,7 @@ SpeedResult measure_speed(double width, int threads, int steps) {
       r.layout_bytes = static_cast<double>(sim.particles().bytes_per_point());
       r.modelled_traffic = modelled_traffic(sim.particles());
       for (int k = 0; k < 3; ++k) sim.step(sim.stable_time_step());  // first touch, shock formed
-      const auto t0 = WallClock::now();
-      for (int k = 0; k < steps; ++k) sim.step(sim.stable_time_step());
-      r.rate = static_cast<double>(r.points) * steps / std::chrono::duration<double>(WallClock::now() - t0).count();
+      r.rate = timed_steps(sim, steps);
       r.peak_bytes = peak_resident_bytes();
     }
     return r;
