@@ -12,6 +12,7 @@ void for_each_field(P& p, F&& f) {
   if (p.has_back_stress()) f(p.alpha);
   if (p.has_failure()) f(p.failure_J), f(p.damage);
   if (p.stores_cold_work()) f(p.E_stored);
+  if (p.tracks_plastic_heat()) f(p.plastic_heat);
 }
 
 }  // namespace
@@ -36,6 +37,7 @@ void Particles<D>::add(const Vec<D>& position, const Vec<D>& velocity, double ma
     damage.push_back(0.0);
   }
   if (stored_) E_stored.push_back(0.0);
+  if (plastic_heat_) plastic_heat.push_back(0.0);
   body.push_back(b);
 }
 
@@ -59,6 +61,12 @@ template <int D>
 void Particles<D>::enable_cold_work(bool on) {
   stored_ = on;
   E_stored.assign(on ? size() : 0, 0.0);
+}
+
+template <int D>
+void Particles<D>::enable_plastic_heat(bool on) {
+  plastic_heat_ = on;
+  plastic_heat.assign(on ? size() : 0, 0.0);
 }
 
 template <int D>

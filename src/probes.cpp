@@ -56,7 +56,7 @@ void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p,
       vy += p.v[id][1];
       P += p.P[id];
       rho += p.density(id);
-      T += thermal ? thermal->temperature(p.material_J(id), p.thermal_energy(id)) : std::nan("");
+      T += thermal ? thermal->of_point(p, id) : std::nan("");
     }
     const double n = static_cast<double>(probe.ids.size());
     std::fprintf(out, "%.10g,%s,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", time, probe.name.c_str(),

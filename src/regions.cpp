@@ -105,7 +105,7 @@ RegionStats region_stats(const Particles<D>& p, const std::vector<std::size_t>& 
   s.density = mean_std(points, [&](std::size_t q) { return p.density(q); });
   s.pressure = mean_std(points, [&](std::size_t q) { return p.P[q]; });
   if (thermal) {
-    s.temperature = mean_std(points, [&](std::size_t q) { return thermal->temperature(p.material_J(q), p.thermal_energy(q)); });
+    s.temperature = mean_std(points, [&](std::size_t q) { return thermal->of_point(p, q); });
   } else {
     s.temperature = {std::nan(""), std::nan("")};
   }

@@ -127,11 +127,17 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
     const std::size_t count = values.size() * sizeof(values[0]) / sizeof(double);
     return std::all_of(d, d + count, [](double v) { return std::isfinite(v); });
   };
-  for (const auto* field : {&p.m, &p.V0, &p.E, &p.P, &p.q, &p.eps_p, &p.failure_J, &p.damage})
+  for (const auto* field : {&p.m, &p.V0, &p.E, &p.P, &p.q, &p.eps_p, &p.failure_J, &p.damage, &p.plastic_heat})
     if (!finite(*field)) bad("it holds a value that is not a finite number (NaN or infinity)");
   if (p.has_failure() != scene.effects.spall)
     bad(std::string("its scene has spall = ") + (scene.effects.spall ? "on" : "off") + " but it holds " +
         (p.has_failure() ? "" : "no ") + "failure state");
+  const bool paper_model = scene.temperature_model == TemperatureModel::paper;
+  if (p.tracks_plastic_heat() != paper_model)
+    bad(std::string("its scene has temperature_model = ") + (paper_model ? "paper" : "energy") + " but it holds " +
+        (p.tracks_plastic_heat() ? "" : "no ") + "plastic heat");
+  if (std::any_of(p.plastic_heat.begin(), p.plastic_heat.end(), [](double w) { return w < 0.0; }))
+    bad("it holds a negative plastic heat");
   if (std::any_of(p.failure_J.begin(), p.failure_J.end(), [](double j) { return j < 0.0; }))
     bad("it holds a negative failure_J");
   for (std::size_t q = 0; q < p.damage.size(); ++q)

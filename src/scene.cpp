@@ -257,9 +257,14 @@ const std::vector<Key>& keys() {
     k.push_back(flag("plasticity", "on",
                      "von Mises strength with mixed hardening; off: hydrodynamic, no deviatoric stress",
                      FIELD(effects.plasticity)));
-    k.push_back(flag("thermal", "on",
-                     "the paper's temperature T = T_H(V) + (E - E_H)/c_v; off: no temperature is computed",
+    k.push_back(flag("thermal", "on", "temperatures by temperature_model; off: no temperature is computed",
                      FIELD(effects.thermal)));
+    k.push_back(choice<TemperatureModel>(
+        "temperature_model", {{"energy", TemperatureModel::energy}, {"paper", TemperatureModel::paper}}, "energy",
+        "energy: T = T_H(V) + (E - E_H(V))/c_v, all the heat in E (compaction, shock and plastic work); paper: "
+        "T = T_H(V) + (plastic work)/c_v, without the compaction heating of collapsing voids, which is what the "
+        "paper's reported temperatures fit (a diagnostic: not with heat_conduction or thermal_softening)",
+        FIELD(temperature_model)));
     k.push_back(flag("spall", "off",
                      "failure in tension: a point whose largest principal stress reaches spall_strength opens "
                      "with its tension held at the strength and no shear, and separates (no tension) once its "
@@ -585,6 +590,16 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                              format_number(a) + " m)");
   if (s.effects.thermal_softening && !(s.effects.thermal && s.effects.plasticity))
     fail("thermal_softening", "needs thermal = on and plasticity = on (it softens the strength by temperature)");
+  if (s.temperature_model == TemperatureModel::paper) {
+    if (!s.effects.thermal) fail("temperature_model", "paper needs thermal = on");
+    if (s.effects.heat_conduction)
+      fail("temperature_model", "paper cannot go with heat_conduction = on: conduction moves heat in E, which the "
+                                "paper's temperature does not count; use temperature_model = energy");
+    if (s.effects.thermal_softening)
+      fail("temperature_model", "paper cannot go with thermal_softening = on: the paper's temperature leaves out "
+                                "the compaction heat and would under-predict softening and melt; use "
+                                "temperature_model = energy");
+  }
   if (s.effects.heat_conduction && !s.effects.thermal)
     fail("heat_conduction", "needs thermal = on (conduction moves heat by temperature differences)");
   if (s.material.tangent_modulus >= s.material.youngs_modulus)

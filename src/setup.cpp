@@ -27,6 +27,20 @@ GridGeometry<D> build_grid_geometry(const Scene& s) {
   return g;
 }
 
+namespace {
+
+// The optional per-point fields the scene's effects need.
+template <int D>
+void enable_fields(Particles<D>& p, const Scene& s) {
+  const StrengthLaw strength = strength_of(s);
+  p.enable_strength(has_stress(strength), has_back_stress(strength));
+  p.enable_failure(s.effects.spall);
+  p.enable_cold_work(s.effects.plasticity && s.taylor_quinney < 1.0);
+  p.enable_plastic_heat(s.temperature_model == TemperatureModel::paper);
+}
+
+}  // namespace
+
 template <int D>
 SizeEstimate estimate_size(const Scene& s) {
   SizeEstimate e;
@@ -39,10 +53,7 @@ SizeEstimate estimate_size(const Scene& s) {
   const double ny = std::ceil((s.flyer_height + margin) / s.cell_size) + std::ceil((s.target_height + margin) / s.cell_size) + 1;
   e.nodes = nx * ny;
   Particles<D> sample;
-  const StrengthLaw strength = strength_of(s);
-  sample.enable_strength(has_stress(strength), has_back_stress(strength));
-  sample.enable_failure(s.effects.spall);
-  sample.enable_cold_work(s.effects.plasticity && s.taylor_quinney < 1.0);
+  enable_fields(sample, s);
   e.point_bytes = e.points * static_cast<double>(sample.bytes_per_point() + StripBins::kBytesPerPoint);
   e.node_bytes = e.nodes * static_cast<double>(Grid<D>::bytes_per_node());
   return e;
@@ -119,10 +130,7 @@ InitialState<2> build_initial_state<2>(const Scene& s) {
   }
 
   const std::size_t n = target.size() + flyer.size() - target_voids.removed_count - flyer_voids.removed_count;
-  const StrengthLaw strength = strength_of(s);
-  st.particles.enable_strength(has_stress(strength), has_back_stress(strength));
-  st.particles.enable_failure(s.effects.spall);
-  st.particles.enable_cold_work(s.effects.plasticity && s.taylor_quinney < 1.0);
+  enable_fields(st.particles, s);
   st.particles.reserve(n);
   add_points(st.particles, flyer, flyer_voids, +s.velocity, s.material.density, Body::flyer);
   add_points(st.particles, target, target_voids, -s.velocity, s.material.density, Body::target);

@@ -68,7 +68,7 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
   doubles("density", scalar.data(), {N}, "kg/m3", "density of the material point", chosen);
   doubles("pressure", p.P.data(), {N}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)", chosen);
   doubles("viscous_pressure", p.q.data(), {N}, "Pa", "artificial viscous pressure q", chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->temperature(p.material_J(q), p.thermal_energy(q)) : std::nan("");
+  for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->of_point(p, q) : std::nan("");
   doubles("temperature", scalar.data(), {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
   doubles("internal_energy", p.E.data(), {N}, "J/kg", "specific internal energy, 0 at the reference state", chosen);
 
@@ -91,7 +91,7 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
   for (std::size_t q = 0; q < n; ++q) scalar[q] = p.has_strength() ? p.eps_p[q] : 0.0;
   doubles("plastic_strain", scalar.data(), {N}, "", "effective plastic strain", chosen);
   for (std::size_t q = 0; q < n; ++q)
-    scalar[q] = thermal && thermal->temperature(p.material_J(q), p.thermal_energy(q)) >= melt.at(p.material_J(q));
+    scalar[q] = thermal && thermal->of_point(p, q) >= melt.at(p.material_J(q));
   doubles("melted", scalar.data(), {N}, "",
           "1 where T is at or above the Lindemann melt temperature T_m(J), else 0 (0 with thermal = off)", chosen);
   for (std::size_t q = 0; q < n; ++q) scalar[q] = p.has_failure() ? p.damage[q] : 0.0;
@@ -143,6 +143,9 @@ void write_restart(hid_t file, const Particles<D>& p, const RunState& run) {
   if (p.stores_cold_work())
     h5::write_dataset(g, "stored_energy", H5T_NATIVE_DOUBLE, p.E_stored.data(), {N}, "J/kg",
                       "plastic work stored as cold work, not heat (taylor_quinney < 1)");
+  if (p.tracks_plastic_heat())
+    h5::write_dataset(g, "plastic_heat", H5T_NATIVE_DOUBLE, p.plastic_heat.data(), {N}, "J/kg",
+                      "plastic work turned to heat so far (temperature_model = paper)");
   if (p.has_failure())
     h5::write_dataset(g, "failure_J", H5T_NATIVE_DOUBLE, p.failure_J.data(), {N}, "",
                       "0 while intact; the volume ratio J at which the point began to open in tension");
@@ -471,6 +474,8 @@ Restart<D> read_state(const std::string& path) {
     if (back) unflatten(h5::read_doubles(g, "back_stress", n, {C}), p.alpha);
     p.enable_cold_work(h5::has_link(g, "stored_energy"));
     if (p.stores_cold_work()) p.E_stored = h5::read_doubles(g, "stored_energy", n, {});
+    p.enable_plastic_heat(h5::has_link(g, "plastic_heat"));
+    if (p.tracks_plastic_heat()) p.plastic_heat = h5::read_doubles(g, "plastic_heat", n, {});
     p.enable_failure(h5::has_link(g, "failure_J"));
     if (p.has_failure()) {
       p.failure_J = h5::read_doubles(g, "failure_J", n, {});

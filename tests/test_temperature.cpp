@@ -1,4 +1,5 @@
-// The Walsh-Christian T_H table against physics-notes section 3, and T = T_H + (E - E_H)/c_v.
+// The Walsh-Christian T_H table against physics-notes section 3, T = T_H + (E - E_H)/c_v (energy
+// model) and T = T_H + W_p/c_v (paper model).
 #include "check.hpp"
 #include "mpmshock/eos.hpp"
 #include "mpmshock/temperature.hpp"
@@ -43,6 +44,9 @@ int main() {
   // Heat added at fixed volume raises T by dE / c_v.
   CHECK_NEAR(temp.temperature(0.9, eos.hugoniot_energy(0.9) + 88000.0) - temp.hugoniot_temperature(0.9), 100.0,
              1e-9);
+  // The paper model: T_H(J) plus the plastic heat over c_v, whatever E holds.
+  CHECK_NEAR(temp.paper_temperature(0.9, 0.0), temp.hugoniot_temperature(0.9), 1e-12);
+  CHECK_NEAR(temp.paper_temperature(0.9, 88000.0) - temp.hugoniot_temperature(0.9), 100.0, 1e-9);
   // T_H grows monotonically with compression down to the table's end.
   double last = 0;
   for (double J = 1.0; J > temp.min_tabulated_J(); J -= 0.01) {

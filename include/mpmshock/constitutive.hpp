@@ -28,6 +28,7 @@ struct PointState {
   double failure_J = 0.0;      // in/out with spall: 0 while intact, else the J it began to open at
   double damage = 0.0;         // in/out with spall: 0 intact ... 1 separated (spall.hpp)
   double E_stored = 0.0;       // in/out: the cold work stored in E [J/kg]
+  double plastic_heat = 0.0;   // in/out: the plastic work turned to heat [J/kg] (temperature_model = paper)
   double work_mismatch = 0.0;  // out: work minus the trapezoid-rule work of the point's own deformation
 };
 
@@ -77,6 +78,7 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
   if constexpr (Strength::has_stress) {
     const double plastic_work = strength.update(st.s, st.alpha, st.eps_p, rate, dt, J_material, st.E - st.E_stored);
     st.E_stored += (1.0 - taylor_quinney) * plastic_work / rho;
+    st.plastic_heat += taylor_quinney * plastic_work / rho;
   }
 
   // Pressure from the new volume and energy; artificial viscosity from this step's compression rate.
@@ -130,7 +132,8 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
   // Per-chunk sums of the mismatch: a chunk is always kChunk consecutive points run in order by one
   // thread, so the total (summed over chunks in order) is the same for any thread count.
   std::vector<double> mismatch((pts.size() + kChunk - 1) / kChunk, 0.0);
-  const bool stores = pts.stores_cold_work();  // taylor_quinney < 1
+  const bool stores = pts.stores_cold_work();       // taylor_quinney < 1
+  const bool heats = pts.tracks_plastic_heat();     // temperature_model = paper
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(max : max_signal) reduction(min : first_bad)
   for (std::size_t p = 0; p < pts.size(); ++p) {
     PointState<D> st{pts.L[p], pts.work[p], pts.F[p], pts.E[p], pts.P[p], pts.q[p], {}, {}, 0.0};
@@ -143,8 +146,10 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
       st.failure_J = pts.failure_J[p];
       st.damage = pts.damage[p];
     }
-    if constexpr (Strength::has_stress)
+    if constexpr (Strength::has_stress) {
       if (stores) st.E_stored = pts.E_stored[p];
+      if (heats) st.plastic_heat = pts.plastic_heat[p];
+    }
     const double signal =
         update_point<D>(st, eos, strength, viscosity, model.cell_size, dt, failure, model.taylor_quinney);
     pts.F[p] = st.F;
@@ -160,8 +165,10 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
       pts.failure_J[p] = st.failure_J;
       pts.damage[p] = st.damage;
     }
-    if constexpr (Strength::has_stress)
+    if constexpr (Strength::has_stress) {
       if (stores) pts.E_stored[p] = st.E_stored;
+      if (heats) pts.plastic_heat[p] = st.plastic_heat;
+    }
     mismatch[p / kChunk] += pts.m[p] * st.work_mismatch;
     const double speed2 = dot(pts.v[p], pts.v[p]);
     if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;

@@ -56,7 +56,7 @@ void conduct_heat(Particles<D>& pts, const StripBins& bins, const Grid<D>& g, co
   // The step's scratch (work is written later in the step) holds T_p, then d_p.
   std::vector<double>& T = pts.work;
   bins.scatter([&](std::size_t p) {  // 1. m_i T_i
-    T[p] = thermal.temperature(pts.material_J(p), pts.thermal_energy(p));
+    T[p] = thermal.of_point(pts, p);
     const double mT = pts.m[p] * T[p];
     for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
                   [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * mT; });

@@ -12,6 +12,7 @@
 //   failure_J  0 while intact; the J at which the point began to open in tension (with spall)
 //   damage     0 intact, rising while it opens, 1 separated (with spall; spall.hpp)
 //   E_stored   the part of E stored as cold work, not heat [J/kg] (taylor_quinney < 1)
+//   plastic_heat  the plastic work turned to heat so far [J/kg] (temperature_model = paper)
 //   work       the work of the last step's nodal forces on the point [J/kg] (scratch of a step)
 #pragma once
 
@@ -35,6 +36,7 @@ struct Particles {
   std::vector<double> eps_p;
   std::vector<double> failure_J, damage;
   std::vector<double> E_stored;
+  std::vector<double> plastic_heat;
   std::vector<std::uint32_t> id;  // stable index, the order points were created in
   std::vector<Body> body;
 
@@ -44,6 +46,7 @@ struct Particles {
   bool has_failure() const { return failure_; }
   bool failed(std::size_t p) const { return failure_ && failure_J[p] > 0.0; }
   bool stores_cold_work() const { return stored_; }
+  bool tracks_plastic_heat() const { return plastic_heat_; }
   // The part of the internal energy that is heat: E less the stored cold work.
   double thermal_energy(std::size_t p) const { return stored_ ? E[p] - E_stored[p] : E[p]; }
 
@@ -63,12 +66,14 @@ struct Particles {
   void enable_failure(bool on);
   // Allocates (or drops) E_stored, all zero.
   void enable_cold_work(bool on);
+  // Allocates (or drops) plastic_heat, all zero.
+  void enable_plastic_heat(bool on);
   void reserve(std::size_t n);
   // Memory this layout holds per point, for --check and the benchmarks.
   std::size_t bytes_per_point() const;
 
  private:
-  bool strength_ = false, back_stress_ = false, failure_ = false, stored_ = false;
+  bool strength_ = false, back_stress_ = false, failure_ = false, stored_ = false, plastic_heat_ = false;
 };
 
 extern template struct Particles<2>;

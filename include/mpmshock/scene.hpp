@@ -20,6 +20,11 @@ enum class UpdateScheme { musl, usl };
 // bilinear cells, whose grid-crossing noise turns into spurious heat in porous runs.
 enum class ShapeFunction { bilinear, gimp, bspline2 };
 
+// How the temperature follows from the state (temperature.hpp): energy (default) counts all the heat
+// in E, T = T_H(V) + (E - E_H(V))/c_v; paper counts only plastic work, T = T_H(V) + W_p/c_v, leaving
+// out the compaction heating of collapsing voids, which is what the paper's reported numbers fit.
+enum class TemperatureModel { energy, paper };
+
 struct RegionSpec {
   // bottom: target points with y in [y1, y1 + height]        (a = y1, b = height)
   // top:    target points with y in [y_top - height, y_top]   (b = height), y_top = highest target point
@@ -42,7 +47,7 @@ struct ProbeSpec {
 
 struct Effects {
   bool plasticity = true;            // von Mises strength; off: hydrodynamic (no deviatoric stress)
-  bool thermal = true;               // the paper's temperature model
+  bool thermal = true;               // temperatures (temperature_model says how)
   bool artificial_viscosity = true;  // shock-capturing bulk viscosity
   bool spall = false;                // failure in tension (spall.hpp)
   bool heat_conduction = false;      // Fourier conduction (heat_conduction.hpp)
@@ -75,6 +80,7 @@ struct Scene {
   double spall_strength = 1.2e9;  // [Pa] tension at which a point fails (spall = on)
   double spall_void_fraction = 0.15;  // void fraction at which a failed point separates (spall.hpp)
   double taylor_quinney = 1.0;    // share of plastic work that becomes heat
+  TemperatureModel temperature_model = TemperatureModel::energy;
   double softening_temperature = 1923.0;  // [K] where linear softening would reach zero
   double melt_temperature = 1220.0;       // [K] T_m0, the melt temperature at J = 1
   double lindemann_a = 1.5;               // volume exponent of the Lindemann melt curve

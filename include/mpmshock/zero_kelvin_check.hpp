@@ -1,7 +1,8 @@
 // A material point colder than 0 K (its internal energy below the 0 K isotherm at its volume) is
 // not physics but a numerical failure, typically a strong shock with too little artificial
 // viscosity ringing. Checked at every sample, where the temperatures are computed anyway (it
-// costs ~14 ns per point, too much for every step). On with thermal = on.
+// costs ~14 ns per point, too much for every step). On with thermal = on. It checks E itself, by the
+// energy model whatever temperature_model says: the paper model's T_H + W_p/c_v cannot fall below 0 K.
 #pragma once
 
 #include "mpmshock/parallel.hpp"
