@@ -49,6 +49,13 @@ def _positive_int(text):
     return value
 
 
+def _positive_float(text):
+    value = float(text)
+    if not value > 0:
+        raise PostError(f"{text} is not a positive number")
+    return value
+
+
 def _colormap(name):
     if name not in matplotlib.colormaps:
         raise PostError(f"no matplotlib colour map '{name}' (e.g. turbo, viridis, inferno, coolwarm)")
@@ -126,6 +133,13 @@ def build_parser():
                        help="colour limits in display units (default: the central 99%% of the points)")
     field.add_argument("--cmap", type=_argument(_colormap), default="turbo",
                        help="matplotlib colour map (default turbo)")
+    field.add_argument("--unit", help="another unit for the colour: MPa for pressure (as the paper's "
+                       "Fig. 1), kg/m3 for density (default: the paper's units)")
+    field.add_argument("--length-unit", type=_argument(_positive_float), default=1.0, metavar="UM",
+                       help="length unit of the axes in um, e.g. 10 as in the paper's Fig. 1 (default 1)")
+    field.add_argument("--true-size", action="store_true",
+                       help="draw each point as a square of its current area, so that unclosed slits "
+                       "show (default: slightly enlarged squares that tile compressed material)")
 
     hist = kind("hist", "distributions of density, pressure, temperature and velocity in one region "
                 "at given times, with the Gaussian of the same mean and deviation; prints skewness and "
@@ -196,7 +210,8 @@ def _field(args):
     snapshot = run.snapshot(time=args.time) if args.time is not None else run.snapshot(args.snapshot)
     fig = plot_field(snapshot, color=args.color, arrows=args.arrows, arrow_scale=args.arrow_scale,
                      window_um=args.window, body=args.body, clim=args.clim, cmap=args.cmap,
-                     title=args.title, run_name=run.name)
+                     title=args.title, run_name=run.name, unit=args.unit, length_unit_um=args.length_unit,
+                     true_size=args.true_size)
     return fig, f"field_{args.color}_{snapshot.index:05d}", run.path
 
 

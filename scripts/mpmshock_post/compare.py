@@ -5,7 +5,8 @@ import numpy as np
 
 from .errors import PostError
 from .labels import run_labels
-from .style import COLORS, LINESTYLES, MARKERS, mark_every, note_missing, panel_figure, short_ticks, time_axis
+from .style import (COLORS, LINESTYLES, MARKERS, keep_min_span, mark_every, note_missing, panel_figure, short_ticks,
+                    time_axis)
 from .timeseries import in_time_range, select_regions
 from .units import TIME, quantity
 
@@ -23,14 +24,20 @@ def column_of(name):
     raise PostError(f"cannot compare '{name}' (choose from {', '.join(COMPARABLE + stds)})")
 
 
-def plot_compare(runs, quantities=("density",), regions=(), labels=None, trange=None, logy=False, title=None):
+def plot_compare(runs, quantities=("density",), regions=(), labels=None, trange=None, logy=False, title=None,
+                 offsets=None):
     """A panel per quantity; a colour per run, a line style per region (default: the first run's
-    first region)."""
+    first region). `offsets`: quantity -> one shift per run in display units, added to its curves
+    and noted in the panel (the paper's Fig. 13 moves the density of delta 1.1, 1.4, 1.7 up)."""
     columns = [column_of(name) for name in quantities]
     regions = list(regions) or list(select_regions(runs[0], ()))[:1]
     labels = list(labels) if labels else run_labels(runs)
     if len(labels) != len(runs):
         raise PostError(f"{len(labels)} labels given for {len(runs)} runs")
+    offsets = offsets or {}
+    for name, shifts in offsets.items():
+        if name not in quantities or len(shifts) != len(runs):
+            raise PostError(f"offsets for '{name}' need one value per run and a panel of that quantity")
     series = [select_regions(run, regions) for run in runs]
 
     # The legend takes a panel of its own: beside one or two panels, under three or more.
@@ -40,10 +47,11 @@ def plot_compare(runs, quantities=("density",), regions=(), labels=None, trange=
         base = name[:-len("_std")] if name.endswith("_std") else name
         q = quantity(base)
         drawn = False
+        shifts = offsets.get(name, [0.0] * len(runs))
         for i, (label, by_region) in enumerate(zip(labels, series)):
             for j, region in enumerate(regions):
                 data = in_time_range(by_region[region], trange)
-                values = data[column] * q.factor
+                values = data[column] * q.factor + shifts[i]
                 if np.all(np.isnan(values)):
                     continue
                 ax.plot(data["time"] * TIME.factor, values, color=COLORS[i % len(COLORS)],
@@ -57,6 +65,12 @@ def plot_compare(runs, quantities=("density",), regions=(), labels=None, trange=
             ax.set_yscale("log")
         else:
             short_ticks(ax)
+            if column.endswith("_mean"):
+                keep_min_span(ax, base)
+        if any(shifts):
+            moved = [f"{label} +{shift:g}" for label, shift in zip(labels, shifts) if shift]
+            ax.text(0.98, 0.02, "moved up: " + ", ".join(moved), transform=ax.transAxes, ha="right",
+                    va="bottom", fontsize=7, color="gray")
         ax.set_ylabel(q.label("Std " if name.endswith("_std") else ""))
         time_axis(ax)
     handles, legend_labels = axes[0].get_legend_handles_labels()

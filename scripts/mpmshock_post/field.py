@@ -77,12 +77,16 @@ def _draw_arrows(ax, xy, velocity, window, arrow_scale, key_xy):
                      coordinates="figure", fontproperties={"size": 8})
 
 
-def _marker_side_um(snapshot, points):
+def _marker_side_um(snapshot, points, true_size=False):
     """Side of each point's square: the larger extent of its deformed lattice cell, F applied to
     the initial square of side sqrt(V0), V0 = V/J. Squares of the current area would leave seams
     where the material is compressed along y but stretched along x; the cap at twice the initial
-    spacing keeps strongly distorted points at collapsing voids from covering their neighbours."""
+    spacing keeps strongly distorted points at collapsing voids from covering their neighbours.
+    `true_size`: squares of the current area exactly, so that slits narrower than a point (voids
+    not yet closed) stay visible as seams."""
     volume = snapshot["volume"][points]
+    if true_size:
+        return np.sqrt(volume) * LENGTH_FACTOR
     if "deformation_gradient" not in snapshot.fields:
         return 1.1 * np.sqrt(volume) * LENGTH_FACTOR
     F = snapshot["deformation_gradient"][points]
@@ -92,7 +96,7 @@ def _marker_side_um(snapshot, points):
     return 1.1 * side0 * np.clip(extent, 1.0, 2.0) * LENGTH_FACTOR  # 10% overlap hides anti-aliasing seams
 
 
-def _robust_limits(values):
+def robust_limits(values):
     """Colour limits over the central 99% of the points: a few collapsing voids reach ten times
     the bulk pressure and would otherwise wash out the shocked material."""
     lo, hi = np.nanpercentile(values, [0.5, 99.5])
@@ -100,17 +104,21 @@ def _robust_limits(values):
 
 
 def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window_um=None, body="all",
-               clim=None, cmap="turbo", title=None, run_name=None):
+               clim=None, cmap="turbo", title=None, run_name=None, unit=None, length_unit_um=1.0,
+               true_size=False):
     """The material points of a snapshot coloured by `color` in the paper's units.
 
     window_um: (x0, x1, y0, y1) in um, default the whole chosen body; body: 'all', 'target' or
     'flyer'; clim: colour limits in display units (default: the central 99% of the points; 0 to 1
-    for damage); arrow_scale: um of arrow per m/s.
+    for damage); arrow_scale: um of arrow per m/s; unit: another display unit for the colour
+    (pressure in MPa as the paper's Fig. 1); length_unit_um: the axes' length unit in um (10 as
+    the paper's Fig. 1); true_size: points drawn at their current area (see _marker_side_um).
     """
-    q = quantity(color)
+    q = quantity(color, unit)
     values = local_quantity(snapshot, color) * q.factor
-    points, window = _select(snapshot, body, window_um)
-    xy = snapshot["position"][points] * LENGTH_FACTOR
+    points, window_um = _select(snapshot, body, window_um)
+    xy = snapshot["position"][points] * (LENGTH_FACTOR / length_unit_um)
+    window = tuple(edge / length_unit_um for edge in window_um)
     values = values[points]
     if np.all(np.isnan(values)):
         raise PostError(f"{color} is NaN at every point of {snapshot.path}"
@@ -127,9 +135,9 @@ def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window
     ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
 
-    points_per_um = ax_w * 72.0 / (x1 - x0)
-    sizes = (_marker_side_um(snapshot, points) * points_per_um) ** 2
-    vmin, vmax = clim if clim is not None else _FIXED_LIMITS.get(color) or _robust_limits(values)
+    points_per_unit = ax_w * 72.0 / (x1 - x0)  # typographic points per displayed length unit
+    sizes = (_marker_side_um(snapshot, points, true_size) / length_unit_um * points_per_unit) ** 2
+    vmin, vmax = clim if clim is not None else _FIXED_LIMITS.get(color) or robust_limits(values)
     scatter = ax.scatter(xy[:, 0], xy[:, 1], c=values, s=sizes, marker="s", linewidths=0, cmap=cmap,
                          vmin=vmin, vmax=vmax, rasterized=True)
     extend = {(False, False): "neither", (True, False): "min", (False, True): "max", (True, True): "both"}
@@ -137,10 +145,12 @@ def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window
                  extend=extend[(bool(np.nanmin(values) < vmin), bool(np.nanmax(values) > vmax))])
     if arrows:
         key_xy = ((m["left"] + ax_w + 0.25) / fig_w, (m["bottom"] + ax_h + 0.12) / fig_h)
-        _draw_arrows(ax, xy, snapshot["velocity"][points], window, arrow_scale, key_xy)
+        scale = None if arrow_scale is None else arrow_scale / length_unit_um
+        _draw_arrows(ax, xy, snapshot["velocity"][points], window, scale, key_xy)
 
-    ax.set_xlabel("$x$ (µm)")
-    ax.set_ylabel("$y$ (µm)")
+    length = "µm" if length_unit_um == 1.0 else f"{length_unit_um:g} µm"
+    ax.set_xlabel(f"$x$ ({length})")
+    ax.set_ylabel(f"$y$ ({length})")
     if title is None:
         case = case_label(snapshot.scene) if snapshot.scene is not None else ""
         joiner = ": " if ax_w >= 4.0 else "\n"  # a narrow column: one item a line, clear of the arrow key

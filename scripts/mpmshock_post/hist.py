@@ -47,7 +47,7 @@ def moments_table(snapshots, region):
     return "\n".join(lines)
 
 
-def _central_range(values):
+def central_range(values):
     lo, hi = np.percentile(values, [0.5, 99.5])
     return (lo, hi) if hi > lo else (lo - 0.5, hi + 0.5)
 
@@ -71,7 +71,7 @@ def plot_histograms(snapshots, region, bins=50, title=None, run_name=None):
         # points: hot spots at collapsed voids lie ten deviations out and would squeeze the bulk of
         # the distribution into a few bins. The moments still use every point.
         edges = np.histogram_bin_edges(np.concatenate(finite), bins=bins,
-                                       range=_central_range(np.concatenate(finite)))
+                                       range=central_range(np.concatenate(finite)))
         x = np.linspace(edges[0], edges[-1], 400)
         for i, (snapshot, values) in enumerate(zip(snapshots, samples)):
             if not values.size:

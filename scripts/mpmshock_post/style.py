@@ -15,6 +15,9 @@ COLORS = ["tab:blue", "tab:red", "tab:green", "tab:orange", "tab:purple", "tab:b
 MARKERS = ["o", "s", "^", "D", "v", "p", "h", "*"]
 LINESTYLES = ["-", "--", ":", "-."]
 FORMATS = ("png", "pdf", "svg")
+# Smallest y span of a panel of region means, in display units: mean velocities of a symmetric
+# impact stay within a few m/s of 0, and autoscaling would blow that noise up into oscillations.
+MIN_SPAN = {"velocity_x": 50.0, "velocity_y": 50.0}
 
 
 def panel_figure(n_panels, ncols, panel_size=(4.2, 3.2), legend_panel=True):
@@ -56,6 +59,15 @@ def time_axis(ax):
 def short_ticks(ax):
     """Squared rates in 1/ns^2 are of order 1e-5: a power-of-ten offset keeps the tick labels short."""
     ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 4))
+
+
+def keep_min_span(ax, name):
+    """Widens the y axis about its middle to MIN_SPAN[name] where the data span less."""
+    span = MIN_SPAN.get(name)
+    lo, hi = ax.get_ylim()
+    if span is not None and hi - lo < span:
+        middle = 0.5 * (lo + hi)
+        ax.set_ylim(middle - 0.5 * span, middle + 0.5 * span)
 
 
 def mark_every(n_samples):

@@ -5,7 +5,7 @@ import numpy as np
 
 from .errors import select_named
 from .labels import case_label
-from .style import mark_every, note_missing, panel_figure, region_styles, short_ticks, time_axis
+from .style import keep_min_span, mark_every, note_missing, panel_figure, region_styles, short_ticks, time_axis
 from .units import TIME, quantity
 
 STATE = ("density", "pressure", "temperature", "velocity_x", "velocity_y")
@@ -48,6 +48,8 @@ def plot_region_series(run, quantities, stat, regions=(), trange=None, logy=Fals
             ax.set_yscale("log")
         else:
             short_ticks(ax)
+            if stat == "mean":
+                keep_min_span(ax, name)
         ax.set_ylabel(q.label(prefix))
         time_axis(ax)
     handles, labels = axes[0].get_legend_handles_labels()

@@ -35,6 +35,9 @@ QUANTITIES = {
     "damage": Quantity("damage $D$", "", 1.0),  # 0 intact ... 1 separated in tension (spall = on)
 }
 
+# Other display units a plot may ask for, per quantity: unit -> factor (the paper's Fig. 1 is in MPa).
+_OTHER_UNITS = {"pressure": {"MPa": 1e-6, "Pa": 1.0}, "density": {"kg/m3": 1.0}}
+
 TIME = Quantity("$t$", "ns", 1e9)
 LENGTH_FACTOR = 1e6  # m -> um
 
@@ -42,9 +45,17 @@ _TIME_SUFFIXES = {"ns": "1e-9", "us": "1e-6", "µs": "1e-6", "ms": "1e-3", "s": 
 _TIME = re.compile(r"^\s*([-+0-9.eE]+)\s*(ns|us|µs|ms|s)\s*$")
 
 
-def quantity(name):
-    """Display units of a quantity; quantities without an entry are drawn in SI."""
-    return QUANTITIES.get(name, Quantity(name.replace("_", " "), "SI", 1.0))
+def quantity(name, unit=None):
+    """Display units of a quantity; quantities without an entry are drawn in SI. `unit` asks for
+    another unit than the paper's default (pressure in MPa, density in kg/m3)."""
+    q = QUANTITIES.get(name, Quantity(name.replace("_", " "), "SI", 1.0))
+    if unit is None or unit == q.unit:
+        return q
+    others = _OTHER_UNITS.get(name, {})
+    if unit not in others:
+        known = ", ".join([q.unit, *others])
+        raise PostError(f"{name} cannot be shown in '{unit}' (units: {known})")
+    return q._replace(unit=unit, factor=others[unit], unit_tex="")
 
 
 def parse_time(text):

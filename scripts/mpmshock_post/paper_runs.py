@@ -1,0 +1,217 @@
+"""The runs behind scripts/reproduce-paper: which cases each figure of Xu et al. needs, the quick
+settings, and whether a run directory is reused, resumed from its last snapshot or run afresh.
+
+A case is a scene file configs/paper/<case>.scene; it runs into DIR/runs/<case>/ with the energy
+temperature model (the simulator's default) and into DIR/runs/<case>-paperT/ with
+`temperature_model = paper`.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+from . import converge
+from .errors import PostError
+from .reader import Run
+from .scene_input import ROOT, requested_scene, scene_differences
+
+# The figures of the paper and the cases (scene stems) each one draws, in legend order.
+VOID_SIZE_CASES = ("void_r25", "base", "void_r100")
+VELOCITY_CASES = ("delta1.4_v500", "delta1.4", "delta1.4_v1500", "delta1.4_v2000")
+POROSITY_CASES = ("delta1.01", "delta1.02", "delta1.1", "delta1.4", "delta1.7")
+FIGURE_CASES = {1: ("base",), 2: ("base",), 3: ("base",), 4: ("base",), 5: ("base",), 6: ("base",),
+                7: VOID_SIZE_CASES, 8: VOID_SIZE_CASES, 9: ("delta1.4",), 10: ("delta1.4",), 11: ("delta1.4",),
+                12: VELOCITY_CASES, 13: POROSITY_CASES}
+FIGURES = tuple(FIGURE_CASES)
+
+# --quick: the same bodies (5 mm + 5 mm), end times, outputs and physics, on a coarser grid and a
+# narrower column. 20 um cells are the shipped base config's resolution (docs/accuracy.md: plateau
+# pressure within 10 %, mean temperature within 50 K at delta 1.03); the 10 um voids of the delta 1.4
+# family are then half a cell in radius, so those curves show trends, not converged values. cfl 0.45
+# takes a third fewer steps and moves results by under 1 % (docs/accuracy.md); it stays below the
+# 0.5 above which jetting runs fail (docs/stability.md). The delta 1.03 cases keep a 1 mm column
+# (per body 75 voids of 25 um, 18 of 50 um, 5 of 100 um); the cases with 10 um voids hold 80
+# (delta 1.01) to 3300 (delta 1.7) per body in 0.5 mm. The whole quick campaign, both temperature
+# models, took 5 to 6 minutes on the shared 2-core machine (--jobs 1), 2.2 GB of runs.
+QUICK_SETTINGS = ("cell_size=20um", "cfl=0.45")
+QUICK_WIDTH = {"base": "1mm", "void_r25": "1mm", "void_r100": "1mm"}
+QUICK_DEFAULT_WIDTH = "0.5mm"
+# Cases that also run with the paper's temperature model in quick mode (None: all of them).
+QUICK_PAPER_T_CASES = None
+
+TEMPERATURE_MODELS = ("energy", "paper")
+PAPER_SUFFIX = "-paperT"
+_RESUMABLE_EXITS = (130, 143)  # stopped by SIGINT / SIGTERM with a final snapshot
+
+
+def scenes_dir():
+    """configs/paper, or $REPRODUCE_PAPER_SCENES (the tests put tiny scenes there)."""
+    return Path(os.environ.get("REPRODUCE_PAPER_SCENES") or ROOT / "configs/paper")
+
+
+def cases_for(figures):
+    """The cases the figures need, each once, in figure order."""
+    return list(dict.fromkeys(case for number in figures for case in FIGURE_CASES[number]))
+
+
+def quick_overrides(case):
+    return [*QUICK_SETTINGS, f"width={QUICK_WIDTH.get(case, QUICK_DEFAULT_WIDTH)}"]
+
+
+def run_name(case, model):
+    return case + (PAPER_SUFFIX if model == "paper" else "")
+
+
+@dataclass
+class PlannedRun:
+    """One simulator run of the campaign: a case with one temperature model."""
+
+    case: str
+    model: str
+    scene: Path
+    overrides: list
+    run_dir: Path
+
+    @property
+    def name(self):
+        return self.run_dir.name
+
+    @property
+    def log(self):
+        return self.run_dir.with_name(self.name + ".log")
+
+    @property
+    def record(self):
+        """The wall time this script measured for the run (JSON), beside the log."""
+        return self.run_dir.with_name(self.name + ".json")
+
+
+def plan_runs(cases, models, runs_dir, quick):
+    runs = []
+    for model in models:
+        for case in cases:
+            if model == "paper" and quick and QUICK_PAPER_T_CASES is not None and case not in QUICK_PAPER_T_CASES:
+                continue
+            scene = scenes_dir() / f"{case}.scene"
+            if not scene.is_file():
+                raise PostError(f"no scene for case '{case}': {scene} is missing")
+            overrides = quick_overrides(case) if quick else []
+            if model == "paper":
+                overrides.append("temperature_model=paper")
+            runs.append(PlannedRun(case, model, scene, overrides, runs_dir / run_name(case, model)))
+    return runs
+
+
+def last_snapshot(run_dir):
+    try:
+        snapshots = Run(run_dir).snapshots()
+    except PostError:
+        return None
+    return snapshots[-1].path if snapshots else None
+
+
+def decide(run, defaults):
+    """('reuse', None) for a finished run of the same scene; ('resume', SNAPSHOT) for a run of the
+    same scene that stopped early (killed, or SIGINT / SIGTERM) and left snapshots; else
+    ('fresh', None). A run that failed (exit 3) runs afresh, and fails again with its message."""
+    requested = requested_scene(run.scene, [*run.overrides, f"output_dir={run.run_dir}"])
+    if converge.reusable(run.run_dir, requested, defaults):
+        return "reuse", None
+    try:
+        same_scene = not scene_differences(Run(run.run_dir).scene, requested, defaults)
+    except PostError:
+        return "fresh", None
+    summary_file = run.run_dir / "summary.json"
+    try:
+        exit_code = json.loads(summary_file.read_text()).get("exit_code") if summary_file.is_file() else None
+    except (OSError, ValueError):
+        exit_code = None
+    snapshot = last_snapshot(run.run_dir)
+    if same_scene and snapshot is not None and exit_code in (None, *_RESUMABLE_EXITS):
+        return "resume", snapshot
+    return "fresh", None
+
+
+def command(run, binary, action, snapshot, threads):
+    if action == "resume":
+        start = [str(binary), "--restart", str(snapshot)]
+    else:
+        start = [str(binary), str(run.scene)]
+        for override in [*run.overrides, f"output_dir={run.run_dir}"]:
+            start += ["--set", override]
+    return start + ["--quiet", "--force", "--threads", str(threads)]
+
+
+def say(text):
+    print(f"reproduce-paper: {text}", file=sys.stderr, flush=True)
+
+
+def execute(run, binary, defaults, threads):
+    """Reuses, resumes or runs one case; returns its record (action, wall seconds) or raises
+    PostError naming the case and its log."""
+    action, snapshot = decide(run, defaults)
+    if action == "reuse":
+        record = read_record(run)
+        wall = record.get("wall_seconds")
+        say(f"{run.name}: reused ({run.run_dir}" + (f", ran in {wall:.1f} s)" if wall else ")"))
+        return {**record, "action": "reused"}
+    cmd = command(run, binary, action, snapshot, threads)
+    say(f"{run.name}: started ({'resumed from ' + snapshot.name if action == 'resume' else 'fresh'})")
+    run.run_dir.parent.mkdir(parents=True, exist_ok=True)
+    started = time.monotonic()
+    with open(run.log, "a" if action == "resume" else "w") as log:
+        log.write("$ " + " ".join(cmd) + "\n")
+        log.flush()
+        env = dict(os.environ)
+        env.setdefault("OMP_WAIT_POLICY", "PASSIVE")  # spinning threads hurt on a shared machine (README)
+        done = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)
+    wall = time.monotonic() - started
+    if done.returncode != 0:
+        how = f"killed by signal {-done.returncode}" if done.returncode < 0 else f"exit {done.returncode}"
+        raise PostError(f"case {run.name} failed (mpmshock {how}); see its log {run.log}")
+    # A resumed run's time is that of its last segment: an interrupted one leaves no record.
+    record = {"action": "resumed" if action == "resume" else "ran", "wall_seconds": wall,
+              "threads": threads, "command": cmd}
+    run.record.write_text(json.dumps(record, indent=1) + "\n")
+    say(f"{run.name}: finished in {wall:.1f} s")
+    return record
+
+
+def read_record(run):
+    """What an earlier invocation measured; without it, the simulator's own summary time."""
+    try:
+        return json.loads(run.record.read_text())
+    except (OSError, ValueError):
+        pass
+    try:
+        return {"wall_seconds": Run(run.run_dir).summary().get("wall_seconds")}
+    except PostError:
+        return {}
+
+
+def execute_all(runs, binary, defaults, jobs):
+    """Every run, `jobs` at a time, each on max(1, cores // jobs) threads; name -> record. After a
+    failure the runs not yet started are cancelled, those under way finish, and the first failure
+    is raised."""
+    cores = len(os.sched_getaffinity(0))
+    threads = max(1, cores // jobs)
+    records, failures = {}, []
+    with ThreadPoolExecutor(max_workers=jobs) as pool:
+        futures = {pool.submit(execute, run, binary, defaults, threads): run for run in runs}
+        for future, run in futures.items():
+            if future.cancelled():
+                continue
+            try:
+                records[run.name] = future.result()
+            except PostError as e:
+                failures.append(e)
+                for other in futures:
+                    other.cancel()
+    if failures:
+        raise failures[0]
+    return records

@@ -1,0 +1,214 @@
+"""scripts/reproduce-paper: which runs each figure needs, valid quick scenes, the reuse / resume /
+fresh decision on fake run directories, and one end-to-end campaign on tiny scenes (all 13
+figures, paper.md) that a failing case stops with its name and log.
+
+    OMP_WAIT_POLICY=PASSIVE /usr/bin/python3 -m pytest -q tests/python/test_reproduce_paper.py
+"""
+
+import json
+import os
+import shutil
+import subprocess
+
+import pytest
+
+from conftest import ROOT, SCRIPTS, simulate
+from mpmshock_post import paper_runs
+from mpmshock_post.paper import build_parser
+from mpmshock_post.paper_runs import FIGURE_CASES, PlannedRun, cases_for, decide, plan_runs, quick_overrides
+from mpmshock_post.scene_input import key_defaults
+
+REPRODUCE = SCRIPTS / "reproduce-paper"
+PAPER_SCENES = ROOT / "configs/paper"
+CASES = sorted(path.stem for path in PAPER_SCENES.glob("*.scene"))
+
+# A 200 um column of 200 um plates with a few 25 um voids: a run to 1.3 us in a fraction of a second,
+# with the paper's regions and 50 ns snapshots, standing in for every case of the campaign.
+TINY_SCENE = """velocity = 1000 m/s
+porosity = 1.15
+void_radius = 25 um
+void_radius_spread = 5 um
+width = 200 um
+target_height = 200 um
+flyer_height = 200 um
+cell_size = 20 um
+end_time = 1.3 us
+sample_interval = 10 ns
+snapshot_interval = 50 ns
+region.B800 = bottom 100 um 800 um
+region.B400 = bottom 100 um 400 um
+region.B100 = bottom 100 um 100 um
+region.T800 = top 800 um
+region.T400 = top 400 um
+region.T100 = top 100 um
+"""
+
+
+def reproduce(*args, scenes=None):
+    env = dict(os.environ, OMP_WAIT_POLICY="PASSIVE")
+    if scenes is not None:
+        env["REPRODUCE_PAPER_SCENES"] = str(scenes)
+    return subprocess.run([str(REPRODUCE), *map(str, args)], capture_output=True, text=True, env=env)
+
+
+@pytest.fixture(scope="module")
+def defaults(mpmshock):
+    return key_defaults(mpmshock)
+
+
+def test_every_case_has_a_scene_and_a_figure():
+    needed = {case for cases in FIGURE_CASES.values() for case in cases}
+    assert needed == set(CASES), f"figures need {sorted(needed)}, configs/paper has {CASES}"
+
+
+def test_cases_follow_the_figures():
+    assert cases_for([1, 2, 3, 4, 5, 6]) == ["base"]
+    assert cases_for([7]) == ["void_r25", "base", "void_r100"]
+    assert cases_for([9, 10, 11]) == ["delta1.4"]
+    assert cases_for([12]) == ["delta1.4_v500", "delta1.4", "delta1.4_v1500", "delta1.4_v2000"]
+    assert cases_for([12, 13]) == ["delta1.4_v500", "delta1.4", "delta1.4_v1500", "delta1.4_v2000",
+                                   "delta1.01", "delta1.02", "delta1.1", "delta1.7"]
+    assert build_parser().parse_args(["--out", "x", "--fig", "13,2,2"]).fig == [2, 13]
+    for bad in ("14", "0", "a", ""):
+        with pytest.raises(SystemExit):
+            build_parser().parse_args(["--out", "x", "--fig", bad])
+    with pytest.raises(SystemExit):
+        build_parser().parse_args(["--out", "x", "--temperature-models", "paper"])
+
+
+def test_plan_names_and_overrides(tmp_path):
+    runs = plan_runs(["base", "delta1.4"], ["energy", "paper"], tmp_path, quick=True)
+    names = [run.name for run in runs]
+    assert names[:2] == ["base", "delta1.4"], names
+    if paper_runs.QUICK_PAPER_T_CASES is None:
+        assert names[2:] == ["base-paperT", "delta1.4-paperT"], names
+    assert "temperature_model=paper" in runs[-1].overrides
+    assert "temperature_model=paper" not in runs[0].overrides
+    assert runs[0].log == tmp_path / "base.log"
+    full = plan_runs(["base"], ["energy"], tmp_path, quick=False)
+    assert full[0].overrides == []
+
+
+def test_quick_scenes_are_valid(mpmshock, defaults):
+    """mpmshock --check accepts every case with the quick overrides (and the paper model where the
+    simulator has it)."""
+    for case in CASES:
+        command = [mpmshock, str(PAPER_SCENES / f"{case}.scene"), "--check"]
+        overrides = quick_overrides(case) + (["temperature_model=paper"] if "temperature_model" in defaults else [])
+        for override in overrides:
+            command += ["--set", override]
+        done = subprocess.run(command, capture_output=True, text=True)
+        assert done.returncode == 0, f"{' '.join(command)}: exit {done.returncode}\n{done.stdout}{done.stderr}"
+
+
+@pytest.fixture(scope="module")
+def finished_run(mpmshock, tmp_path_factory):
+    """A finished tiny run of TINY_SCENE, as the campaign would have written it."""
+    tmp = tmp_path_factory.mktemp("reuse")
+    scene = tmp / "base.scene"
+    scene.write_text(TINY_SCENE.replace("1.3 us", "100 ns"))
+    simulate(mpmshock, str(scene), tmp / "runs/base")
+    return PlannedRun("base", "energy", scene, [], tmp / "runs/base")
+
+
+def variant(run, tmp_path, change=None):
+    """A copy of the run's directory, changed by `change(run_dir)`."""
+    copy = PlannedRun(run.case, run.model, run.scene, list(run.overrides), tmp_path / "runs" / run.name)
+    shutil.copytree(run.run_dir, copy.run_dir)
+    if change:
+        change(copy.run_dir)
+    return copy
+
+
+def set_exit_code(code):
+    def change(run_dir):
+        summary = json.loads((run_dir / "summary.json").read_text())
+        (run_dir / "summary.json").write_text(json.dumps({**summary, "exit_code": code}))
+    return change
+
+
+def test_reuse_resume_or_fresh(finished_run, defaults, tmp_path):
+    assert decide(finished_run, defaults) == ("reuse", None)
+
+    changed = variant(finished_run, tmp_path / "a")
+    changed.overrides = ["velocity=1500"]
+    assert decide(changed, defaults) == ("fresh", None), "a run of another scene must not be reused"
+
+    killed = variant(finished_run, tmp_path / "b", lambda d: (d / "summary.json").unlink())
+    action, snapshot = decide(killed, defaults)
+    assert action == "resume" and snapshot == sorted(killed.run_dir.glob("snapshot_*.h5"))[-1], (action, snapshot)
+
+    for code in (130, 143):
+        action, snapshot = decide(variant(finished_run, tmp_path / f"c{code}", set_exit_code(code)), defaults)
+        assert action == "resume" and snapshot is not None, (code, action)
+
+    failed = variant(finished_run, tmp_path / "d", set_exit_code(3))
+    assert decide(failed, defaults) == ("fresh", None), "a failed run (exit 3) is rerun, not resumed"
+
+    def only_scene(run_dir):
+        for path in run_dir.glob("snapshot_*.h5"):
+            path.unlink()
+        (run_dir / "summary.json").unlink()
+    assert decide(variant(finished_run, tmp_path / "e", only_scene), defaults) == ("fresh", None)
+
+    empty = PlannedRun("base", "energy", finished_run.scene, [], tmp_path / "none/base")
+    assert decide(empty, defaults) == ("fresh", None)
+
+
+def test_campaign_on_tiny_scenes(mpmshock, defaults, tmp_path):
+    scenes = tmp_path / "scenes"
+    scenes.mkdir()
+    for case in CASES:
+        (scenes / f"{case}.scene").write_text(TINY_SCENE)
+    out = tmp_path / "out"
+    done = reproduce("--out", out, scenes=scenes)
+    assert done.returncode == 0, done.stderr
+    for number in range(1, 14):
+        image = out / f"fig{number:02d}.png"
+        assert image.is_file() and image.stat().st_size > 10_000, f"{image} missing or empty"
+    page = (out / "paper.md").read_text()
+    assert "![Fig. 13](fig13.png)" in page and "| `runs/base` |" in page, page
+    with_paper = "temperature_model" in defaults
+    assert (out / "runs/base-paperT/summary.json").is_file() == with_paper
+    assert with_paper or "skipping the paper temperature model" in done.stderr, done.stderr
+
+    again = reproduce("--out", out, "--fig", "2", scenes=scenes)
+    assert again.returncode == 0 and "base: reused" in again.stderr, again.stderr
+    assert "started" not in again.stderr, again.stderr
+
+    (scenes / "base.scene").write_text(TINY_SCENE + "no_such_key = 1\n")
+    broken = reproduce("--out", out, "--fig", "2", "--temperature-models", "energy", scenes=scenes)
+    assert broken.returncode != 0
+    assert "case base failed" in broken.stderr and str(out / "runs/base.log") in broken.stderr, broken.stderr
+    assert "no_such_key" in (out / "runs/base.log").read_text()
+
+
+def test_plot_options_for_the_paper(finished_run):
+    """The options the paper's figures need from the plotting modules: pressure in MPa, lengths in
+    10 um, points at their true size, a minimum span for mean velocities, offsets in a comparison."""
+    from mpmshock_post import PostError, reader
+    from mpmshock_post.compare import plot_compare
+    from mpmshock_post.field import plot_field
+    from mpmshock_post.timeseries import plot_means
+    from mpmshock_post.units import quantity
+
+    assert quantity("pressure", "MPa").factor == 1e-6 and quantity("pressure", "GPa").factor == 1e-9
+    with pytest.raises(PostError, match="cannot be shown in 'MPa'"):
+        quantity("temperature", "MPa")
+
+    run = reader.Run(finished_run.run_dir)
+    fig = plot_field(run.snapshot(), color="pressure", unit="MPa", length_unit_um=10.0, true_size=True, body="target")
+    labels = [ax.get_ylabel() for ax in fig.axes]
+    assert "$P$ (MPa)" in labels and "$y$ (10 µm)" in labels, labels
+    top = run.snapshot()["position"][:, 1].max() * 1e6 / 10.0
+    assert abs(fig.axes[0].get_ylim()[1] - top) < 1e-9, (fig.axes[0].get_ylim(), top)
+
+    means = plot_means(run, regions=["B100"])
+    u_x = next(ax for ax in means.axes if ax.get_ylabel() == "$u_x$ (m/s)")  # a few m/s of noise about 0
+    assert u_x.get_ylim()[1] - u_x.get_ylim()[0] >= 50.0, u_x.get_ylim()
+
+    shifted = plot_compare([run, run], quantities=["density"], labels=["a", "b"], offsets={"density": [0.0, 0.1]})
+    a, b = shifted.axes[0].get_lines()[:2]
+    assert abs((b.get_ydata() - a.get_ydata()).mean() - 0.1) < 1e-12
+    with pytest.raises(PostError, match="one value per run"):
+        plot_compare([run, run], quantities=["density"], offsets={"density": [0.1]})
