@@ -13,6 +13,8 @@ import numpy as np
 import pytest
 
 from mpmshock_post import paper_comparison as pc
+from mpmshock_post import paper_measures as pm
+from mpmshock_post import paper_rows as pr
 
 REGION_COLUMNS = ("count", "density_mean", "density_std", "pressure_mean", "pressure_std", "temperature_mean",
                   "temperature_std", "velocity_x_mean", "velocity_x_std", "velocity_y_mean", "velocity_y_std",
@@ -166,21 +168,21 @@ def by_quantity(rows):
 
 def test_first_maximum_of_a_rise_and_fall():
     y = rise_and_settle(T, 2.7, 3.14, 3.0)  # the 3-sample smoothing keeps this peak at 250 ns
-    assert pc.first_maximum(T, y) == (250.0, pytest.approx(3.14))
+    assert pm.first_maximum(T, y) == (250.0, pytest.approx(3.14))
 
 
 def test_first_maximum_skips_noise_on_the_way_up():
     y = rise_and_settle(T, 0.0, 10.0, 5.0) + np.where(T == 100.0, 0.5, 0.0)  # a bump at 40 % of the rise
-    assert pc.first_maximum(T, y)[0] == 250.0
+    assert pm.first_maximum(T, y)[0] == 250.0
 
 
 def test_first_maximum_of_a_series_still_rising():
-    with pytest.raises(pc.NotMeasured):
-        pc.first_maximum(T, T * 2.0)
+    with pytest.raises(pm.NotMeasured):
+        pm.first_maximum(T, T * 2.0)
 
 
 def test_exponential_decay_recovers_the_time_constant():
-    decay = pc.exponential_decay(T, decaying_std(T, 5.0, 1.0, tau=80.0), 1200.0)
+    decay = pm.exponential_decay(T, decaying_std(T, 5.0, 1.0, tau=80.0), 1200.0)
     assert decay.t_peak == 100.0
     assert decay.tau == pytest.approx(80.0, rel=1e-3)
     assert decay.steady == pytest.approx(1.0, rel=0.01)
@@ -188,64 +190,64 @@ def test_exponential_decay_recovers_the_time_constant():
 
 
 def test_exponential_decay_needs_a_decay():
-    with pytest.raises(pc.NotMeasured):
-        pc.exponential_decay(T, 1.0 + 0.001 * T, 1200.0)
+    with pytest.raises(pm.NotMeasured):
+        pm.exponential_decay(T, 1.0 + 0.001 * T, 1200.0)
 
 
 def test_rise_end_and_its_straight_line():
     y = np.minimum(T, 150.0) * 0.01
-    t_end, r2 = pc.rise_end(T, y, 1200.0)
+    t_end, r2 = pm.rise_end(T, y, 1200.0)
     assert 150.0 <= t_end <= 160.0
     assert r2 > 0.99
 
 
 def test_deepest_dip_between_two_times():
     y = 5.0 - 0.3 * np.exp(-0.5 * ((T - 450.0) / 20.0) ** 2) - 0.1 * np.exp(-0.5 * ((T - 800.0) / 20.0) ** 2)
-    t_dip, value = pc.deepest_dip(T, y, 250.0, 700.0)
+    t_dip, value = pm.deepest_dip(T, y, 250.0, 700.0)
     assert t_dip == 450.0 and value < 4.8
-    with pytest.raises(pc.NotMeasured):
-        pc.deepest_dip(T, np.ones_like(T), 250.0, 700.0)
+    with pytest.raises(pm.NotMeasured):
+        pm.deepest_dip(T, np.ones_like(T), 250.0, 700.0)
 
 
 def test_trend_slope_per_microsecond_and_fluctuation():
-    fit = pc.trend(T, 3.0 + 0.002 * T + 0.01 * np.sin(T), 600.0, 1200.0)
+    fit = pm.trend(T, 3.0 + 0.002 * T + 0.01 * np.sin(T), 600.0, 1200.0)
     assert fit.slope == pytest.approx(2.0, rel=0.01)   # 0.002 per ns = 2 per us
     assert fit.fluctuation == pytest.approx(0.01 / np.sqrt(2), rel=0.1)
-    with pytest.raises(pc.NotMeasured):
-        pc.trend(T, T, 600.0, 650.0)  # shorter than MIN_WINDOW
+    with pytest.raises(pm.NotMeasured):
+        pm.trend(T, T, 600.0, 650.0)  # shorter than MIN_WINDOW
 
 
 def test_oscillation_ignores_slow_trends():
     slow = 2.7 + 1e-4 * T
     fast = slow + 0.005 * np.sin(2 * np.pi * T / 30.0)
-    assert pc.oscillation(T, slow, 900.0, 1200.0) < 1e-6
-    assert pc.oscillation(T, fast, 900.0, 1200.0) > 1e-3
+    assert pm.oscillation(T, slow, 900.0, 1200.0) < 1e-6
+    assert pm.oscillation(T, fast, 900.0, 1200.0) > 1e-3
 
 
 def test_upward_crossing_interpolates():
-    assert pc.upward_crossing(T, T - 805.0, 0.0) == pytest.approx(805.0)
+    assert pm.upward_crossing(T, T - 805.0, 0.0) == pytest.approx(805.0)
 
 
 def test_running_mean_ends():
-    assert pc.smooth3(np.array([0.0, 3.0, 6.0, 9.0])).tolist() == [1.5, 3.0, 6.0, 7.5]
+    assert pm.smooth3(np.array([0.0, 3.0, 6.0, 9.0])).tolist() == [1.5, 3.0, 6.0, 7.5]
 
 
 def test_column_heights_per_bin_across_the_periodic_width():
     x = np.array([5.0, 15.0, 15.0, 25.0, 105.0]) * 1e-6   # 105 um wraps to 5 um in a 100 um column
     y = np.array([1.0, 2.0, 3.0, 4.0, 7.0])
-    assert pc.column_heights(x, y, 100e-6, 10e-6).tolist() == [7.0, 3.0, 4.0]
+    assert pm.column_heights(x, y, 100e-6, 10e-6).tolist() == [7.0, 3.0, 4.0]
 
 
 def test_number_verdicts():
-    assert pc.number_verdict(3.15, 3.14, 0.005, "").startswith("agree (+0.32 %")
-    assert pc.number_verdict(986.0, 877.0, 0.05, "").startswith("differ (+12 %")
-    assert pc.number_verdict(470.0, 432.0, 15.0, "K", relative=False).startswith("differ (+38 K")
+    assert pr.number_verdict(3.15, 3.14, 0.005, "").startswith("agree (+0.32 %")
+    assert pr.number_verdict(986.0, 877.0, 0.05, "").startswith("differ (+12 %")
+    assert pr.number_verdict(470.0, 432.0, 15.0, "K", relative=False).startswith("differ (+38 K")
 
 
 def test_accuracy_at_nearest_level_and_coarser_runs():
-    assert pc.accuracy_at(1.03, 2.5).pressure == pytest.approx(0.048)
-    assert pc.accuracy_at(1.01, 5.0).temperature == pytest.approx(7.1)   # nearest studied porosity: 1.03
-    coarse = pc.accuracy_at(1.4, 1.0)
+    assert pm.accuracy_at(1.03, 2.5).pressure == pytest.approx(0.048)
+    assert pm.accuracy_at(1.01, 5.0).temperature == pytest.approx(7.1)   # nearest studied porosity: 1.03
+    coarse = pm.accuracy_at(1.4, 1.0)
     assert coarse.density == pytest.approx(0.028) and "coarser than any level" in coarse.text
 
 
@@ -351,8 +353,8 @@ def test_missing_and_incomplete_runs_give_not_run(rows):
 
 def test_a_measurement_the_run_cannot_give(runs):
     def too_short(run):
-        raise pc.NotMeasured("the run ends too soon")
-    row = pc.measured_row(pc.Campaign(runs), "Fig 2", "a claim", "yes", "", ["base"], too_short)
+        raise pm.NotMeasured("the run ends too soon")
+    row = pr.measured_row(pm.Campaign(runs), "Fig 2", "a claim", "yes", "", ["base"], too_short)
     assert row["mpmshock"] == "" and row["note"].startswith("not measured (base: h 20 um")
     assert row["note"].endswith("the run ends too soon")
 
