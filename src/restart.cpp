@@ -22,7 +22,7 @@ const std::set<std::string>& restart_changeable_keys() {
   static const std::set<std::string> keys = {
       "end_time",      "cfl",        "sample_interval", "snapshot_interval", "snapshot_compression",
       "snapshot_grid", "output_dir", "av_linear",       "av_quadratic",      "artificial_viscosity",
-      "update_scheme", "thermal",  "flip_fraction", "probe_interval"};
+      "update_scheme", "thermal",  "flip_fraction", "probe_interval", "snapshot_times"};
   return keys;
 }
 

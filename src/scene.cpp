@@ -71,7 +71,7 @@ Range non_negative() { return {0.0, kInf, false, false}; }
 Range open(double lo, double hi) { return {lo, hi, true, true}; }
 Range closed(double lo, double hi) { return {lo, hi, false, false}; }
 
-enum class Kind { quantity, integer, flag, text, choice };
+enum class Kind { quantity, integer, flag, text, choice, times };
 
 struct Key {
   std::string name;
@@ -119,6 +119,42 @@ Key quantity(std::string name, Dimension dim, Range range, std::string def, std:
   k.get = [dim, ref](const Scene& s) {
     const std::string unit(si_unit(dim));
     return format_number(ref(s)) + (unit.empty() ? "" : " " + unit);
+  };
+  return k;
+}
+
+// A comma-separated list of increasing positive times ("250 ns, 750 ns"), or "none".
+template <class Ref>
+Key times(std::string name, std::string meaning, Ref ref) {
+  Key k = describe_key(Kind::times, name, "none", std::move(meaning));
+  k.dim = Dimension::time;
+  k.set = [name, ref](Scene& s, const std::string& text, const Origin& at) {
+    std::vector<double> values;
+    if (text != "none") {
+      std::size_t start = 0;
+      while (start <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', start), text.size());
+        const std::string item = text.substr(start, comma - start);
+        double t = 0.0;
+        try {
+          t = parse_quantity(item, Dimension::time);
+        } catch (const std::invalid_argument& e) {
+          throw error_at(at, name, "'" + item + "': " + e.what() + " (a list is '250 ns, 750 ns', or none)");
+        }
+        if (!(t > 0.0)) throw error_at(at, name, "time " + format_number(t) + " s must be > 0");
+        if (!values.empty() && !(t > values.back()))
+          throw error_at(at, name, "times must increase (" + format_number(t) + " s follows " +
+                                       format_number(values.back()) + " s)");
+        values.push_back(t);
+        start = comma + 1;
+      }
+    }
+    ref(s) = values;
+  };
+  k.get = [ref](const Scene& s) {
+    std::string out;
+    for (double t : ref(s)) out += (out.empty() ? "" : ", ") + format_number(t) + " s";
+    return out.empty() ? std::string("none") : out;
   };
   return k;
 }
@@ -333,6 +369,10 @@ const std::vector<Key>& keys() {
     k.push_back(quantity("snapshot_interval", D::time, non_negative(), "100 ns",
                          "simulated time between HDF5 snapshots; 0: only the first and the last",
                          FIELD(snapshot_interval)));
+    k.push_back(times("snapshot_times",
+                      "further snapshots at these times, e.g. 250 ns, 750 ns (beside snapshot_interval; 0 there "
+                      "and a list here writes the first, the listed and the last)",
+                      FIELD(snapshot_times)));
     k.push_back(quantity("probe_interval", D::time, non_negative(), "0 s",
                          "time between rows of probes.csv (probe.NAME keys); 0: every step", FIELD(probe_interval)));
     k.push_back(integer("snapshot_compression", closed(0, 9), "0",
@@ -546,6 +586,11 @@ std::vector<std::string> scene_warnings(const Scene& s) {
   if (s.snapshot_interval > 0.0 && s.end_time / s.snapshot_interval > 1000)
     out.push_back("snapshot_interval " + format_number(s.snapshot_interval) + " s writes " +
                   format_number(std::floor(s.end_time / s.snapshot_interval)) + " snapshot files");
+  const auto late = std::count_if(s.snapshot_times.begin(), s.snapshot_times.end(),
+                                  [&](double t) { return t > s.end_time * (1.0 + 1e-12); });
+  if (late > 0)
+    out.push_back("snapshot_times: " + std::to_string(late) + " of them after end_time " + format_number(s.end_time) +
+                  " s will not be written");
   if (s.end_time / s.sample_interval > 100000)
     out.push_back("sample_interval " + format_number(s.sample_interval) + " s writes " +
                   format_number(std::floor(s.end_time / s.sample_interval)) + " rows per region to regions.csv");
@@ -774,6 +819,7 @@ std::string key_reference_markdown() {
         break;
       }
       case Kind::text: unit = "path"; break;
+      case Kind::times: unit = std::string(si_unit(k.dim)); break;
     }
     out += "| `" + k.name + "` | " + unit + " | " + k.default_text + " | " + k.meaning + " |\n";
   }

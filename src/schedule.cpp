@@ -33,14 +33,44 @@ double landing_step(double stable_dt, double remaining) {
   return stable_dt;
 }
 
+namespace {
+
+double listed_time(std::size_t index, const Scene& scene) {
+  return index < scene.snapshot_times.size() ? scene.snapshot_times[index] : std::numeric_limits<double>::infinity();
+}
+
+// The first of the (increasing) listed times after t, within tol.
+std::size_t next_listed_after(double t, const Scene& scene, double tol) {
+  std::size_t i = 0;
+  while (listed_time(i, scene) <= t + tol) ++i;
+  return i;
+}
+
+}  // namespace
+
 double next_event_time(const OutputSchedule& sch, const Scene& scene, double end_time) {
   return std::min({end_time, event_time(sch.next_sample, scene.sample_interval),
-                   event_time(sch.next_snapshot, scene.snapshot_interval)});
+                   event_time(sch.next_snapshot, scene.snapshot_interval), listed_time(sch.next_listed, scene)});
+}
+
+bool snapshot_due(OutputSchedule& sch, const Scene& scene, double t, double tol) {
+  const bool periodic = t >= event_time(sch.next_snapshot, scene.snapshot_interval) - tol;
+  const bool listed = t >= listed_time(sch.next_listed, scene) - tol;
+  if (periodic) sch.next_snapshot = next_event_after(t, scene.snapshot_interval, tol);
+  if (listed) sch.next_listed = next_listed_after(t, scene, tol);
+  return periodic || listed;
+}
+
+bool snapshot_written_at(const OutputSchedule& sch, const Scene& scene, double t, double tol) {
+  const bool periodic = scene.snapshot_interval > 0.0 && event_time(sch.next_snapshot - 1, scene.snapshot_interval) >= t - tol;
+  const bool listed = sch.next_listed > 0 && listed_time(sch.next_listed - 1, scene) >= t - tol;
+  return periodic || listed;
 }
 
 void resume_schedule(OutputSchedule& sch, const Scene& scene, double t, double tol) {
   sch.next_sample = next_event_after(t, scene.sample_interval, tol);
   sch.next_snapshot = next_event_after(t, scene.snapshot_interval, tol);
+  sch.next_listed = next_listed_after(t, scene, tol);
 }
 
 }  // namespace mpmshock

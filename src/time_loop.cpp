@@ -79,10 +79,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
       failed_at_sample = !status.ok();
       if (failed_at_sample) break;
     }
-    if (sim.time() >= event_time(sch.next_snapshot, scene.snapshot_interval) - tol) {
-      sch.next_snapshot = next_event_after(sim.time(), scene.snapshot_interval, tol);
-      take_snapshot();
-    }
+    if (snapshot_due(sch, scene, sim.time(), tol)) take_snapshot();
     progress.update(sim.time(), sim.steps(), dt);
   }
   progress.finish();
@@ -110,8 +107,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
     // The end time is an output time whatever the intervals.
     const double tol = 1e-9 * sch.last_dt;
     if (event_time(sch.next_sample - 1, scene.sample_interval) < sim.time() - tol) out.sample(sim, sch.last_dt);
-    if (scene.snapshot_interval == 0.0 || event_time(sch.next_snapshot - 1, scene.snapshot_interval) < sim.time() - tol)
-      take_snapshot();
+    if (!snapshot_written_at(sch, scene, sim.time(), tol)) take_snapshot();
   }
 
   finish_result(result, sim, run.initial, start_steps);

@@ -1,7 +1,9 @@
 // The output schedule: steps land exactly on sample and snapshot times, the end time snaps onto an
 // output time it equals up to round-off, and the rule that resumes a schedule after an event is
 // the one a restart uses.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "check.hpp"
 #include "mpmshock/schedule.hpp"
@@ -65,5 +67,37 @@ int main() {
     CHECK(resumed.next_snapshot == loop.next_snapshot);
   }
   CHECK(samples == 20);  // every 10 ns to 200 ns, none missed, none twice
+
+  // Listed snapshot times beside the interval: steps land on them, a time that is also a periodic
+  // one gives one snapshot, and a resumed schedule continues as the loop does.
+  Scene listed = s;
+  listed.snapshot_interval = 5e-8;
+  listed.snapshot_times = {2.5e-8, 5e-8, 1.2e-7};
+  std::vector<double> written;
+  OutputSchedule run;
+  t = 0.0;
+  while (t < 1.5e-7 * (1 - 1e-12)) {
+    const double dt = landing_step(dt_stable, next_event_time(run, listed, 1.5e-7) - t);
+    t += dt;
+    const double tol = 1e-9 * dt;
+    if (t >= event_time(run.next_sample, listed.sample_interval) - tol)
+      run.next_sample = next_event_after(t, listed.sample_interval, tol);
+    if (snapshot_due(run, listed, t, tol)) written.push_back(t);
+    CHECK(snapshot_written_at(run, listed, t, tol) == (!written.empty() && written.back() == t));
+    OutputSchedule resumed;
+    resume_schedule(resumed, listed, t, tol);
+    CHECK(resumed.next_snapshot == run.next_snapshot);
+    CHECK(resumed.next_listed == run.next_listed);
+  }
+  // 25 ns (listed), 50 ns (both: once), 100 ns (periodic), 120 ns (listed), 150 ns (periodic).
+  const std::vector<double> expected = {2.5e-8, 5e-8, 2 * 5e-8, 1.2e-7, 3 * 5e-8};
+  CHECK(written.size() == expected.size());
+  for (std::size_t i = 0; i < std::min(written.size(), expected.size()); ++i) CHECK_REL(written[i], expected[i], 1e-12);
+  // Listed times only (interval 0): none due before the first, and the end is not a snapshot time.
+  listed.snapshot_interval = 0.0;
+  OutputSchedule only;
+  CHECK(!snapshot_due(only, listed, 1e-8, 1e-18));
+  CHECK(snapshot_due(only, listed, 2.5e-8, 1e-18) && only.next_listed == 1);
+  CHECK(!snapshot_written_at(only, listed, 3e-8, 1e-18));
   return check::result();
 }

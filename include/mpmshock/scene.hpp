@@ -93,6 +93,7 @@ struct Scene {
   std::string output_dir = "output";
   double sample_interval = 10e-9;
   double snapshot_interval = 100e-9;
+  std::vector<double> snapshot_times;  // further snapshot times, increasing [s]
   std::int64_t snapshot_compression = 0;
   bool snapshot_grid = false;
 

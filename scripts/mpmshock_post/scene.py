@@ -88,7 +88,8 @@ def parse_region(text):
 
 
 class Scene(dict):
-    """key -> float (SI) or str, in file order; `units[key]` is the unit text ('' for none)."""
+    """key -> float (SI), tuple of floats (a list such as snapshot_times) or str, in file order;
+    `units[key]` is the unit text ('' for none)."""
 
     def __init__(self, text, source):
         super().__init__()
@@ -102,6 +103,14 @@ class Scene(dict):
             if not sep:
                 raise PostError(f"{source}:{number}: expected 'key = value', got '{line}'")
             key, value = key.strip(), value.strip()
+            if "," in value:  # a list of quantities (snapshot_times): a tuple in SI
+                items = [item.strip().partition(" ") for item in value.split(",")]
+                try:
+                    self[key] = tuple(float(number) for number, _, _ in items)
+                    self.units[key] = items[0][2].strip()
+                    continue
+                except ValueError:
+                    pass
             first, _, unit = value.partition(" ")
             try:
                 self[key] = float(first)

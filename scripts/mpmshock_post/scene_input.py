@@ -36,8 +36,12 @@ def mpmshock_binary():
 
 
 def parse_value(text):
-    """SI float from '50 um', '50um', '1.2e-6' (a bare number is SI); any other text (a word such
-    as 'on' or 'musl', a region spec) comes back stripped, as a str."""
+    """SI float from '50 um', '50um', '1.2e-6' (a bare number is SI); a tuple of them from a
+    comma-separated list of quantities ('250 ns, 750 ns': snapshot_times); any other text (a word
+    such as 'on' or 'musl', a region spec) comes back stripped, as a str."""
+    if "," in text:
+        items = tuple(parse_value(item) for item in text.split(","))
+        return items if all(isinstance(item, float) for item in items) else text.strip()
     match = _NUMBER.match(text)
     if not match or (match.group(2) and match.group(2) not in _UNIT_FACTORS):
         return text.strip()
@@ -102,6 +106,10 @@ def requested_scene(scene_path, overrides):
 def _same(a, b):
     if isinstance(a, float) and isinstance(b, float):
         return a == b or abs(a - b) <= 1e-12 * max(abs(a), abs(b))
+    if isinstance(a, tuple) and isinstance(b, tuple):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) != isinstance(b, float):  # one time given as a list of one
+        return _same((a,) if isinstance(a, float) else a, (b,) if isinstance(b, float) else b)
     return a == b
 
 
@@ -120,6 +128,8 @@ def scene_differences(resolved, requested, defaults, ignore=("output_dir",)):
         want = requested.get(key, defaults.get(key))
         if key == "grid_margin" and want == "auto":
             continue
+        if key not in resolved and key in defaults and _same(want, defaults[key]):
+            continue  # a run of an earlier simulator without this key, which behaved as its default
         have = resolved.get(key)
         if key not in defaults and key not in requested:
             differences.append(f"{key}: not a key this simulator knows")
