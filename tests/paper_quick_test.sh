@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The quick paper campaign (README, Reproducing the paper): every case in both temperature models,
 # then every figure and a comparison row for every claim, none of them "not run". About 5-6 minutes
-# and 2.2 GB here, so it is registered only with -DMPMSHOCK_PAPER_TEST=ON (ctest -L paper).
+# and 3 GB here, so it is registered only with -DMPMSHOCK_PAPER_TEST=ON (ctest -L paper).
 # Usage: paper_quick_test.sh MPMSHOCK OUT_DIR
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"

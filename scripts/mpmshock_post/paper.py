@@ -68,7 +68,7 @@ def build_parser():
         "and DIR/paper.md. Runs go to DIR/runs/<case> (energy temperature model) and DIR/runs/<case>-paperT "
         "(temperature_model = paper), logs to DIR/runs/<name>.log; a finished run of the same scene is reused, "
         "an interrupted one resumes from its last snapshot. The simulator is $MPMSHOCK or build/src/mpmshock.",
-        epilog=quick_text() + " It took 5 to 6 minutes and 2.2 GB on the project's shared 2-core machine (the "
+        epilog=quick_text() + " It took 5 to 6 minutes and 3 GB on the project's shared 2-core machine (the "
         "budget is 15 minutes); "
         "--jobs 2 is faster there. The full campaign (configs/paper as written: 5 and 10 um cells, 2 mm wide) "
         "takes roughly 7 hours per temperature model there (estimated from its point-steps, not measured).")

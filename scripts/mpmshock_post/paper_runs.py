@@ -37,7 +37,7 @@ FIGURES = tuple(FIGURE_CASES)
 # 0.5 above which jetting runs fail (docs/stability.md). The delta 1.03 cases keep a 1 mm column
 # (per body 75 voids of 25 um, 18 of 50 um, 5 of 100 um); the cases with 10 um voids hold 80
 # (delta 1.01) to 3300 (delta 1.7) per body in 0.5 mm. The whole quick campaign, both temperature
-# models, took 5 to 6 minutes on the shared 2-core machine (--jobs 1), 2.2 GB of runs.
+# models, took 5 minutes on the shared 2-core machine (--jobs 1), 3 GB of runs.
 QUICK_SETTINGS = ("cell_size=20um", "cfl=0.45")
 QUICK_WIDTH = {"base": "1mm", "void_r25": "1mm", "void_r100": "1mm"}
 QUICK_DEFAULT_WIDTH = "0.5mm"
