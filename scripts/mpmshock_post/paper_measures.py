@@ -387,11 +387,14 @@ class CaseRun:
         """The last LATE_WINDOW (300 ns) before t_stop."""
         return self.t_stop - LATE_WINDOW, self.t_stop
 
+    def first_maximum(self, region, column):
+        """(time, value) of the first maximum (first_maximum) of a region's column before t_stop."""
+        t, y = self.series(region, column)
+        return first_maximum(*in_window(t, y, t[0], self.t_stop))
+
     def initial_stage_end(self, region=BOTTOM):
         """End of the initial stage: the first maximum of the region's mean density."""
-        t, rho = self.series(region, "density_mean")
-        t_max, _ = first_maximum(*in_window(t, rho, t[0], self.t_stop))
-        return t_max
+        return self.first_maximum(region, "density_mean")[0]
 
     def after_initial_stage(self, region, column):
         """Trend of a column over [initial_stage_end, t_stop]."""

@@ -9,7 +9,7 @@ from .errors import PostError
 from .hugoniot import hugoniot_temperature_table, porous_shock
 from .paper_measures import (BOTTOM, BOTTOM_REGIONS, DISSIPATION_COLUMNS, PAPER_T_SUFFIX, SQUARED_RATE_UNIT,
                              TEMPERATURE_MODELS, TOP_REGIONS, NotMeasured, _display_quantity, column_heights,
-                             deepest_dip, exponential_decay, first_maximum, in_window, late_dissipation, oscillation,
+                             deepest_dip, exponential_decay, in_window, late_dissipation, oscillation,
                              rise_end, smooth3, trend, value_at, window_mean)
 from .paper_rows import (ENERGY_T_REASON, FRAME_TEXT, LAYOUT_REASON, PAPER_432_REASON, PAPER_T_LEAST, fmt,
                          measured_row, number_verdict, ratio, row, signed, temperature_reason, yes_no)
@@ -78,7 +78,7 @@ def first_maximum_value_rows(c):
         def measure(run, column=column, name=name, paper_value=paper_value, unit=unit, tolerance=tolerance,
                     relative=relative):
             t, y = run.series(BOTTOM, column)
-            t_max, value = first_maximum(*in_window(t, y, t[0], run.t_stop))
+            t_max, value = run.first_maximum(BOTTOM, column)
             verdict = number_verdict(value, paper_value, tolerance(run), unit, relative)
             if verdict.startswith("agree"):
                 reason = ""
@@ -102,8 +102,7 @@ def first_maximum_time_rows(c):
     rows = []
     for name, column, case in entries:
         def measure(run, column=column):
-            t, y = run.series(BOTTOM, column)
-            t_max, _ = first_maximum(*in_window(t, y, t[0], run.t_stop))
+            t_max, _ = run.first_maximum(BOTTOM, column)
             verdict = number_verdict(t_max, 250.0, 0.1, "ns")
             reason = "" if verdict.startswith("agree") else (
                 f": theory puts the porous front's exit from B800 at {run.front_exit_time():.0f} ns; the paper "
@@ -166,7 +165,7 @@ def fig2_rise_rows(c):
     for name, column, case in columns:
         def measure(run, column=column):
             t, y = run.series(BOTTOM, column)
-            t_max, _ = first_maximum(*in_window(t, y, t[0], run.t_stop))
+            t_max, _ = run.first_maximum(BOTTOM, column)
             t_rise, r2 = rise_end(t, y, t_max)
             return (fmt(t_rise), f"{number_verdict(t_rise, 150.0, 0.15, 'ns')}; R^2 of a line over 0-{t_rise:.0f} ns "
                     f"{r2:.3f}; the rise ends when the smoothed rate falls below half its 0-100 ns rate; theory: the "
