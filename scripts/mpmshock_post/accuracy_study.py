@@ -658,6 +658,17 @@ def _legend(fig, handles, labels, ncol):
     fig.legend_strip.legend(handles, labels, loc="center", ncol=ncol, fontsize=7, frameon=False)
 
 
+def _legend_of_all(fig, axes, ncol):
+    """One legend for every panel: each label once, with the first panel's handle that has it."""
+    handles, labels = [], []
+    for ax in axes.flat:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            if label not in labels:
+                handles.append(handle)
+                labels.append(label)
+    _legend(fig, handles, labels, ncol)
+
+
 def _save(fig, path):
     fig.savefig(path, dpi=90)
     return path
@@ -756,13 +767,7 @@ def figure_porous(porous, r, path):
             ax.set_xlabel("h / r", fontsize=7)
             ax.set_ylabel(unit_of(q), fontsize=7)
             ax.tick_params(labelsize=6)
-    handles, labels = [], []
-    for ax in axes.flat:
-        for hnd, lab in zip(*ax.get_legend_handles_labels()):
-            if lab not in labels:
-                handles.append(hnd)
-                labels.append(lab)
-    _legend(fig, list(handles), list(labels), 4)
+    _legend_of_all(fig, axes, 4)
     return _save(fig, path)
 
 
@@ -813,22 +818,14 @@ def figure_windows(cases, path):
             for q, color in zip(qs, ("tab:blue", "tab:orange")):
                 ax.plot(t, columns[q] * factor, color=color, lw=0.9, label=q)
                 exact = o.series.exact.get(q)
-                if exact is not None and row == 0 and q == "macro_normal_stress":
-                    ax.axhline(exact * factor, color="k", lw=0.7, linestyle="--", label="exact / full compaction")
-                if exact is not None and row == 1:
+                if exact is not None and (q == "macro_normal_stress" or row == 1):
                     ax.axhline(exact * factor, color="k", lw=0.7, linestyle="--", label="exact / full compaction")
             ax.axvspan(t0 / NS, t1 / NS, color="tab:green", alpha=0.15, label="plateau window")
             ax.set_title(f"{title}, h = {o.h[-1] / UM:g} um", fontsize=7)
             ax.set_xlabel("t (ns)", fontsize=7)
             ax.set_ylabel(unit, fontsize=7)
             ax.tick_params(labelsize=6)
-    handles, labels = [], []
-    for ax in axes.flat:
-        for hnd, lab in zip(*ax.get_legend_handles_labels()):
-            if lab not in labels:
-                handles.append(hnd)
-                labels.append(lab)
-    _legend(fig, list(handles), list(labels), 5)
+    _legend_of_all(fig, axes, 5)
     return _save(fig, path)
 
 
