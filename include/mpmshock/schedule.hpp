@@ -1,7 +1,7 @@
 // When a run writes what: samples (regions.csv, conservation.csv) every sample_interval,
-// snapshots every snapshot_interval and at each of snapshot_times, both at the end; and time steps that land exactly on those
-// times. Pure arithmetic on times, shared by the time loop and restart so that both continue
-// identically (test_schedule checks it directly).
+// snapshots every snapshot_interval and at each of snapshot_times, both at the end; and time steps
+// that land exactly on those times. Pure arithmetic on times, shared by the time loop and restart
+// so that both continue identically (test_schedule checks it directly).
 #pragma once
 
 #include <cstddef>
