@@ -36,8 +36,16 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
       << std::abs(porosity - s.porosity) / s.porosity << ")\n";
   out << "grid: " << g.nx << " x " << g.ny - 1 << " cells of " << g.h * 1e6 << " um, y " << g.y_min * 1e3 << " .. "
       << g.y_max() * 1e3 << " mm, " << g.nodes() << " nodes\n";
-  out << "material points: " << st.particles.size() << " (" << s.particles_per_cell << " x " << s.particles_per_cell
+  const std::size_t whole = st.target.material_points + st.flyer.material_points, simulated = st.particles.size();
+  out << "material points: " << whole << " (" << s.particles_per_cell << " x " << s.particles_per_cell
       << " per cell)\n";
+  const bool mirrored = st.mirror.on();
+  const std::string why_off = asymmetry_of(s).empty() ? "heat_conduction = on, or as the scene sets it" : asymmetry_of(s);
+  out << "symmetry: "
+      << (mirrored ? "on: the target's " + std::to_string(simulated) +
+                         " points are simulated, the flyer is their mirror image about y = 0"
+                   : "off (" + why_off + ")")
+      << "\n";
   const Model model(s);
   const double signal = initial_signal_speed(st.particles, model);
   const double dt0 = s.cfl * s.cell_size / signal;
@@ -51,10 +59,13 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
       << (s.effects.artificial_viscosity ? "on" : "off") << ", voids " << (s.porosity > 1.0 ? "on" : "off")
       << "; update scheme " << (s.update_scheme == UpdateScheme::musl ? "MUSL" : "USL") << "\n";
   const std::size_t per_point = st.particles.bytes_per_point() + StripBins::kBytesPerPoint;
-  const double bytes = static_cast<double>(st.particles.size()) * static_cast<double>(per_point) +
+  // A mirrored run's snapshots build the whole set of points while they write.
+  const double bytes = static_cast<double>(simulated) * static_cast<double>(per_point) +
+                       (mirrored ? static_cast<double>(whole * st.particles.bytes_per_point()) : 0.0) +
                        static_cast<double>(g.nodes()) * static_cast<double>(Grid<D>::bytes_per_node());
-  out << "memory: about " << bytes_text(bytes) << " (" << per_point << " bytes per point, "
-      << Grid<D>::bytes_per_node() << " per node)\n";
+  out << "memory: about " << bytes_text(bytes) << " (" << per_point << " bytes per simulated point"
+      << (mirrored ? " and the whole set while a snapshot is written" : "") << ", " << Grid<D>::bytes_per_node()
+      << " per node)\n";
   return out.str();
 }
 

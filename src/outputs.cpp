@@ -1,5 +1,7 @@
 #include "mpmshock/outputs.hpp"
 
+#include <optional>
+
 #include "mpmshock/diagnostics.hpp"
 #include "mpmshock/regions.hpp"
 
@@ -11,9 +13,11 @@ std::string conservation_header(int dimension) {
 }
 
 template <int D>
-Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append)
-    : scene_(scene), dir_(dir), regions_(open_output(dir / "regions.csv", append ? "a" : "w")),
+Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append, MirrorImage<D> mirror)
+    : scene_(scene), dir_(dir), mirror_(std::move(mirror)),
+      regions_(open_output(dir / "regions.csv", append ? "a" : "w")),
       conservation_(open_output(dir / "conservation.csv", append ? "a" : "w")), xdmf_(xdmf_path()) {
+  for (const RegionSpec& r : scene.regions) regions_need_whole_ |= mirror_.on() && r.kind == RegionSpec::Kind::band;
   if (!append) {
     std::fprintf(regions_.get(), "%s\n", kRegionsHeader);
     std::fprintf(conservation_.get(), "%s\n", conservation_header(D).c_str());
@@ -32,21 +36,25 @@ void Outputs<D>::follow(Probes<D> probes, double start_time, bool append) {
 template <int D>
 void Outputs<D>::write_probe_rows(const Simulation<D>& sim) {
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
-  probes_.write_rows(probes_file_.get(), sim.time(), sim.particles(), thermal);
+  probes_.write_rows(probes_file_.get(), sim.time(), sim.particles(), thermal, mirror_);
   next_probe_ = probes_.next_after(sim.time());
 }
 
 template <int D>
 void Outputs<D>::sample(const Simulation<D>& sim, double dt) {
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
-  write_region_rows(regions_.get(), sim.time(), sample_regions(sim.particles(), scene_.regions, thermal,
+  // Regions of the target alone see the same points either way; a band may reach into the flyer.
+  std::optional<Particles<D>> whole;
+  if (regions_need_whole_) whole = mirror_.whole(sim.particles());
+  const Particles<D>& points = whole ? *whole : sim.particles();
+  write_region_rows(regions_.get(), sim.time(), sample_regions(points, scene_.regions, thermal,
                                                                    sim.grid().geo.cross_section()));
-  const Totals t = compute_totals(sim.particles());
+  const Totals t = totals(sim);
   std::fprintf(conservation_.get(), "%.10g,%lld,%.6g,%.12g,", sim.time(), static_cast<long long>(sim.steps()), dt,
                t.mass);
   for (int d = 0; d < D; ++d) std::fprintf(conservation_.get(), "%.12g,", t.momentum[d]);
   std::fprintf(conservation_.get(), "%.12g,%.12g,%.12g,%.12g\n", t.kinetic, t.internal, t.total_energy(),
-               sim.clock().work_mismatch);
+               mirror_.whole_sum(sim.clock().work_mismatch));
   if (probes_file_) flush_or_throw(probes_file_.get(), "probes.csv");
   flush_or_throw(regions_.get(), "regions.csv");
   flush_or_throw(conservation_.get(), "conservation.csv");
@@ -63,9 +71,12 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
     options.grid_rows = sim.active_rows();
   }
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
-  write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);
+  std::optional<Particles<D>> whole;
+  if (mirror_.on()) whole = mirror_.whole(sim.particles());
+  const Particles<D>& points = whole ? *whole : sim.particles();
+  write_snapshot((dir_ / name).string(), points, thermal, run, options);
   const GridGeometry<D>& g = sim.grid().geo;
-  xdmf_.add({name, sim.time(), sim.particles().size(), scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h});
+  xdmf_.add({name, sim.time(), points.size(), scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h});
 }
 
 template class Outputs<2>;

@@ -2,21 +2,6 @@
 
 namespace mpmshock {
 
-namespace {
-
-// Every per-point field, for bulk operations (reserve, bytes per point) that must not forget one.
-template <class P, class F>
-void for_each_field(P& p, F&& f) {
-  f(p.x), f(p.v), f(p.m), f(p.V0), f(p.F), f(p.L), f(p.work), f(p.E), f(p.P), f(p.q), f(p.id), f(p.body);
-  if (p.has_strength()) f(p.s), f(p.eps_p);
-  if (p.has_back_stress()) f(p.alpha);
-  if (p.has_failure()) f(p.failure_J), f(p.damage);
-  if (p.stores_cold_work()) f(p.E_stored);
-  if (p.tracks_plastic_heat()) f(p.plastic_heat);
-}
-
-}  // namespace
-
 template <int D>
 void Particles<D>::add(const Vec<D>& position, const Vec<D>& velocity, double mass, double volume0, Body b) {
   id.push_back(static_cast<std::uint32_t>(x.size()));
@@ -71,13 +56,26 @@ void Particles<D>::enable_plastic_heat(bool on) {
 
 template <int D>
 void Particles<D>::reserve(std::size_t n) {
-  for_each_field(*this, [n](auto& field) { field.reserve(n); });
+  for_each_member([&](auto field) { (this->*field).reserve(n); });
+}
+
+template <int D>
+void Particles<D>::enable_fields_of(const Particles& other) {
+  enable_strength(other.strength_, other.back_stress_);
+  enable_failure(other.failure_);
+  enable_cold_work(other.stored_);
+  enable_plastic_heat(other.plastic_heat_);
+}
+
+template <int D>
+void Particles<D>::append_copy(const Particles& from, std::size_t p) {
+  for_each_member([&](auto field) { (this->*field).push_back((from.*field)[p]); });
 }
 
 template <int D>
 std::size_t Particles<D>::bytes_per_point() const {
   std::size_t bytes = 0;
-  for_each_field(*this, [&bytes](const auto& field) { bytes += sizeof(field[0]); });
+  for_each_member([&](auto field) { bytes += sizeof((this->*field)[0]); });
   return bytes;
 }
 

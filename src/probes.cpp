@@ -45,18 +45,20 @@ double Probes<D>::next_after(double t) const {
 }
 
 template <int D>
-void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p,
-                           const HugoniotTemperature* thermal) const {
+void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal,
+                           const MirrorImage<D>& mirror) const {
   for (const Probe& probe : probes_) {
     double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0, P = 0.0, rho = 0.0, T = 0.0;
     for (std::uint32_t id : probe.ids) {  // storage order is id order: points are never reordered
-      x += p.x[id][0];
-      y += p.x[id][1];
-      vx += p.v[id][0];
-      vy += p.v[id][1];
-      P += p.P[id];
-      rho += p.density(id);
-      T += thermal ? thermal->of_point(p, id) : std::nan("");
+      const auto [q, mirrored] = mirror.source_of(id);
+      const double y_sign = mirrored ? -1.0 : 1.0;
+      x += p.x[q][0];
+      y += y_sign * p.x[q][1];
+      vx += p.v[q][0];
+      vy += y_sign * p.v[q][1];
+      P += p.P[q];
+      rho += p.density(q);
+      T += thermal ? thermal->of_point(p, q) : std::nan("");
     }
     const double n = static_cast<double>(probe.ids.size());
     std::fprintf(out, "%.10g,%s,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", time, probe.name.c_str(),

@@ -36,6 +36,14 @@ void check_csv_header(const fs::path& path, const std::string& expected, const s
                    " has the columns of another mpmshock version; continue in a new directory (--set output_dir=DIR)");
 }
 
+// A snapshot written before the symmetry key existed ran the whole domain: it goes on so (its
+// scene would otherwise read symmetry = auto and drop its flyer).
+std::vector<std::string> with_old_defaults(const std::string& scene_text, std::vector<std::string> overrides) {
+  if (scene_text.rfind("symmetry =", 0) != 0 && scene_text.find("\nsymmetry =") == std::string::npos)
+    overrides.push_back("symmetry=off");
+  return overrides;
+}
+
 void check_restart_overrides(const std::string& snapshot, const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) {
     const std::string key = override_key(o);
@@ -167,7 +175,8 @@ template <int D>
 RunResult restart_from(const std::string& snapshot, const std::vector<std::string>& overrides,
                        const RunOptions& options) {
   Restart<D> r = read_snapshot<D>(snapshot);
-  const Scene scene = parse_scene(r.run.scene_text, snapshot + " (scene)", overrides);
+  const Scene scene =
+      parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, overrides));
   check_fits<D>(scene);
   const double t0 = r.run.clock.time;
   if (!(scene.end_time > t0))
@@ -225,13 +234,15 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   write_text(dir / "scene.txt", r.run.scene_text);
   if (!fs::exists(dir / "voids.csv")) write_voids(dir / "voids.csv", r.run.flyer, r.run.target);
 
-  Simulation<D> sim(scene, grid, std::move(r.points), r.run.clock);
-  Outputs<D> out(scene, dir, append);
-  if (!scene.probes.empty()) {  // resolved on the initial state, as the run did
-    const InitialState<D> initial = build_initial_state<D>(scene);
-    out.follow(Probes<D>(scene, initial.particles, initial.grid.width()), sim.time(),
-               append && fs::exists(dir / "probes.csv"));
-  }
+  // Probes and the mirror image come from the initial state, as the run made them. A snapshot holds
+  // the whole impact; with symmetry = on the target's points go on.
+  const bool from_initial = !scene.probes.empty() || scene.symmetry == Symmetry::on;
+  const InitialState<D> initial = from_initial ? build_initial_state<D>(scene) : InitialState<D>{};
+  const MirrorImage<D>& mirror = initial.mirror;
+  Simulation<D> sim(scene, grid, mirror.on() ? mirror.half(r.points) : std::move(r.points), r.run.clock);
+  Outputs<D> out(scene, dir, append, mirror);
+  if (!scene.probes.empty())
+    out.follow(probes_of(scene, initial), sim.time(), append && fs::exists(dir / "probes.csv"));
   out.keep_listing(std::move(earlier));
   // Resume the output schedule from the snapshot's time, by the rule the loop itself uses.
   resume_schedule(r.run.schedule, scene, t0, 1e-9 * r.run.schedule.last_dt);
@@ -251,7 +262,8 @@ RunResult restart_run(const std::string& snapshot, const std::vector<std::string
 std::string check_restart(const std::string& snapshot, const std::vector<std::string>& overrides) {
   check_restart_overrides(snapshot, overrides);
   Restart<2> r = read_snapshot<2>(snapshot);
-  const Scene scene = parse_scene(r.run.scene_text, snapshot + " (scene)", overrides);
+  const Scene scene =
+      parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, overrides));
   check_fits<2>(scene);
   validate_restart(r, scene, build_grid_geometry<2>(scene), snapshot);
   std::ostringstream out;

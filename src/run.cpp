@@ -22,15 +22,15 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
   run.scene_text = resolved_scene(scene);
   run.target = initial.target;
   run.flyer = initial.flyer;
-  run.initial = compute_totals(initial.particles);
-  Probes<D> probes(scene, initial.particles, initial.grid.width());
+  run.initial = initial.mirror.whole(compute_totals(initial.particles));  // summed as every later total is
+  Probes<D> probes = probes_of(scene, initial);
   Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
 
   const fs::path dir(scene.output_dir);
   const DirectoryLock lock = prepare_output_dir(scene, options.force);
   write_text(dir / "scene.txt", run.scene_text);
   write_voids(dir / "voids.csv", run.flyer, run.target);
-  Outputs<D> out(scene, dir, false);
+  Outputs<D> out(scene, dir, false, std::move(initial.mirror));
   out.follow(std::move(probes), sim.time(), false);
   out.probe(sim);
   out.sample(sim, 0.0);
@@ -52,7 +52,10 @@ std::string describe_result(const RunResult& r) {
   if (r.steps_with_fewer_threads > 0)
     out << " (fewer for " << r.steps_with_fewer_threads << " steps, where that measured faster: a busy machine)";
   out << "\n";
-  out << "material points: " << r.points << ", point-steps per second: " << r.point_steps_per_second << "\n";
+  out << "material points: " << r.points;
+  if (r.symmetry) out << " simulated (the target; symmetry = on: the flyer is its mirror image, " << 2 * r.points
+                      << " points in the outputs)";
+  out << ", point-steps per second: " << r.point_steps_per_second << "\n";
   out << "relative error: mass " << r.mass_error << ", momentum " << r.momentum_error << ", energy " << r.energy_error
       << "\n";
   out << "porosity (from material points): " << r.porosity << " with " << r.voids << " voids\n";

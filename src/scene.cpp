@@ -252,6 +252,12 @@ const std::vector<Key>& keys() {
     k.push_back(flag("flyer_mirror", "on",
                      "the flyer is the mirror image of the target about y = 0, as in the paper; off: its own voids",
                      FIELD(flyer_mirror)));
+    k.push_back(choice<Symmetry>(
+        "symmetry", {{"auto", Symmetry::automatic}, {"on", Symmetry::on}, {"off", Symmetry::off}}, "auto",
+        "on: simulate the target alone, with a symmetry plane at y = 0 (no normal velocity, no shear traction), "
+        "the flyer its mirror image in every output: half the cost; auto: on whenever the flyer is the target's "
+        "mirror image and heat_conduction is off",
+        FIELD(symmetry)));
     k.push_back(quantity("target_height", D::length, Range{0.0, 10.0, true, false}, "5 mm", "target (upper body) height",
                          FIELD(target_height)));
     k.push_back(quantity("flyer_height", D::length, Range{0.0, 10.0, true, false}, "5 mm", "flyer (lower body) height",
@@ -662,6 +668,13 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     if (s.flyer_mirror && std::abs(s.flyer_height - s.target_height) > 1e-12 * s.target_height)
       fail("flyer_mirror", "a mirrored flyer needs flyer_height = target_height");
   }
+  if (s.symmetry == Symmetry::on) {
+    if (const std::string why = asymmetry_of(s); !why.empty())
+      fail("symmetry", "on needs a flyer that is the target's mirror image about y = 0, but " + why);
+    if (s.effects.heat_conduction)
+      fail("symmetry", "on cannot go with heat_conduction = on yet (conduction's nodal sums are not folded "
+                       "across the plane); use symmetry = off");
+  }
   if (s.grid_margin >= 0.0 && s.grid_margin < 2.0 * s.cell_size)
     fail("grid_margin", "must be at least two cells (or 'auto')");
   // Sizes that would not fit in memory are refused here, before anything is allocated.
@@ -685,6 +698,13 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
 }
 
 }  // namespace
+
+std::string asymmetry_of(const Scene& s) {
+  if (std::abs(s.flyer_height - s.target_height) > 1e-12 * s.target_height)
+    return "flyer_height differs from target_height";
+  if (s.porosity > 1.0 && !s.flyer_mirror) return "flyer_mirror = off gives the flyer its own voids";
+  return "";
+}
 
 double Scene::derived_grid_margin() const {
   if (grid_margin >= 0.0) return grid_margin;
@@ -756,6 +776,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
 
   for (const auto& [key, e] : by_key) scene.origin[key] = e.at.where;
   check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; });
+  if (scene.symmetry == Symmetry::automatic)
+    scene.symmetry = asymmetry_of(scene).empty() && !scene.effects.heat_conduction ? Symmetry::on : Symmetry::off;
   return scene;
 }
 

@@ -47,7 +47,8 @@ SizeEstimate estimate_size(const Scene& s) {
   const double a = s.particle_spacing();
   const double columns = std::round(s.width / a);
   const double rows = std::round(s.target_height / a) + std::round(s.flyer_height / a);
-  e.points = columns * rows;  // before the voids are cut: an upper bound
+  const bool mirrored = s.symmetry == Symmetry::on;  // the target alone, the flyer its mirror image
+  e.points = columns * (mirrored ? std::round(s.target_height / a) : rows);  // before the voids are cut: an upper bound
   const double margin = s.derived_grid_margin();
   const double nx = std::round(s.width / s.cell_size);
   const double ny = std::ceil((s.flyer_height + margin) / s.cell_size) + std::ceil((s.target_height + margin) / s.cell_size) + 1;
@@ -55,6 +56,8 @@ SizeEstimate estimate_size(const Scene& s) {
   Particles<D> sample;
   enable_fields(sample, s);
   e.point_bytes = e.points * static_cast<double>(sample.bytes_per_point() + StripBins::kBytesPerPoint);
+  // A snapshot of a mirrored run builds the whole impact's points while it writes (mirror_image.hpp).
+  if (mirrored) e.point_bytes += columns * rows * static_cast<double>(sample.bytes_per_point());
   e.node_bytes = e.nodes * static_cast<double>(Grid<D>::bytes_per_node());
   return e;
 }
@@ -137,6 +140,10 @@ InitialState<2> build_initial_state<2>(const Scene& s) {
 
   st.target = summarize("target", target, target_voids);
   st.flyer = summarize("flyer", flyer, flyer_voids);
+  if (s.symmetry == Symmetry::on) {
+    st.mirror = MirrorImage<2>(st.particles);
+    st.particles = st.mirror.half(st.particles);
+  }
   return st;
 }
 

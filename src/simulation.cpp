@@ -1,9 +1,12 @@
 #include "mpmshock/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <sstream>
 
 #include "mpmshock/shape.hpp"
+#include "mpmshock/symmetry_plane.hpp"
 #include "mpmshock/transfer.hpp"
 #include "mpmshock/zero_kelvin_check.hpp"
 
@@ -47,8 +50,9 @@ Kernels<D> kernels_for(const Model& m) {
 
 // The step effects a model calls for, in the order their slots run.
 template <int D>
-std::vector<std::unique_ptr<StepEffect<D>>> effects_for(const Model& m) {
+std::vector<std::unique_ptr<StepEffect<D>>> effects_for(const Model& m, const GridGeometry<D>& grid) {
   std::vector<std::unique_ptr<StepEffect<D>>> effects;
+  if (m.symmetry_plane) effects.push_back(std::make_unique<SymmetryPlane<D>>(grid));
   if (m.thermal) effects.push_back(std::make_unique<ZeroKelvinCheck<D>>(*m.thermal));
   return effects;
 }
@@ -65,8 +69,10 @@ void print_vector(std::ostream& out, const Vec<D>& v) {
 template <int D>
 Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock)
     : model_(scene), points_(std::move(points)), grid_(grid), kernels_(kernels_for<D>(model_)),
-      effects_(effects_for<D>(model_)), clock_(clock) {
+      effects_(effects_for<D>(model_, grid)), clock_(clock) {
   points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
+  if (model_.symmetry_plane && std::find(points_.body.begin(), points_.body.end(), Body::flyer) != points_.body.end())
+    throw std::logic_error("symmetry = on simulates the target's points alone (build_initial_state gives them)");
   heat_.conductivity = model_.conductivity;
   heat_.specific_heat = scene.material.specific_heat;
   if (model_.conducts_heat())
@@ -87,6 +93,7 @@ StepStatus Simulation<D>::step(double dt) {
   const bool musl = model_.scheme == UpdateScheme::musl;
   grid_.reset(rows);                                                   // reset grid
   kernels_.to_grid(points_, bins_, grid_);                             // P2G: m_i, p_i, f_i
+  for (auto& e : effects_) e->after_to_grid(grid_, rows);              //   (symmetry plane: the mirror's share)
   if (kernels_.conduct)                                                //   heat conduction: E_p
     kernels_.conduct(points_, bins_, grid_, *model_.thermal, heat_, dt);
   update_grid_momentum(grid_, rows, dt);                               // a_i, v_i^{n+1}
@@ -94,6 +101,7 @@ StepStatus Simulation<D>::step(double dt) {
   kernels_.velocity_to_points(points_, bins_, grid_, dt,               // G2P: FLIP (/PIC) v_p (MUSL: re-map m_p v_p)
                               model_.flip_fraction);
   if (musl) {
+    for (auto& e : effects_) e->before_remap(grid_, rows);
     remap_grid_velocity(grid_, rows);                                  // MUSL: v~_i
     for (auto& e : effects_) e->after_remap(grid_, rows);
   }

@@ -19,8 +19,8 @@ using WallClock = std::chrono::steady_clock;
 
 // Counts, errors and rates of a finished run.
 template <int D>
-void finish_result(RunResult& result, const Simulation<D>& sim, const Totals& start, std::int64_t start_steps) {
-  const Totals end = compute_totals(sim.particles());
+void finish_result(RunResult& result, const Simulation<D>& sim, const Totals& start, const Totals& end,
+                   std::int64_t start_steps) {
   result.steps = sim.steps();
   result.end_time = sim.time();
   result.point_steps_per_second =
@@ -46,6 +46,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   result.porosity = porosity_of(run.target, run.flyer);
   result.voids = run.target.voids.size() + run.flyer.voids.size();
   result.points = sim.particles().size();
+  result.symmetry = sim.model().symmetry_plane;
   const std::int64_t start_steps = sim.steps();
   OutputSchedule& sch = run.schedule;
   auto take_snapshot = [&] {
@@ -110,7 +111,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
     if (!snapshot_written_at(sch, scene, sim.time(), tol)) take_snapshot();
   }
 
-  finish_result(result, sim, run.initial, start_steps);
+  finish_result(result, sim, run.initial, out.totals(sim), start_steps);
   omp_set_num_threads(all_threads);
   write_summary_json(dir / "summary.json", result);
   return result;
@@ -136,13 +137,13 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
                "  \"end_time\": %s,\n  \"wall_seconds\": %s,\n  \"material_points\": %zu,\n"
                "  \"point_steps_per_second\": %s,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n"
                "  \"mass_error\": %s,\n  \"momentum_error\": %s,\n  \"energy_error\": %s,\n"
-               "  \"porosity\": %s,\n  \"voids\": %zu\n}\n",
+               "  \"porosity\": %s,\n  \"voids\": %zu,\n  \"symmetry\": %s\n}\n",
                r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps),
                json_number(r.start_time).c_str(), json_number(r.end_time).c_str(), json_number(r.wall_seconds).c_str(),
                r.points, json_number(r.point_steps_per_second).c_str(), r.threads,
                static_cast<long long>(r.steps_with_fewer_threads), json_number(r.mass_error).c_str(),
                json_number(r.momentum_error).c_str(), json_number(r.energy_error).c_str(),
-               json_number(r.porosity).c_str(), r.voids);
+               json_number(r.porosity).c_str(), r.voids, r.symmetry ? "true" : "false");
   flush_or_throw(f.get(), path.string());
   f.reset();
   fs::rename(tmp, path);

@@ -88,9 +88,10 @@ int main(int argc, char** argv) {
 
   const Scene scene = load_scene(path, overrides);
   InitialState<2> initial = build_initial_state<2>(scene);
+  const MirrorImage<2> mirror = initial.mirror;  // symmetry = on: totals of the whole impact
   Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
   const HugoniotTemperature thermal(scene.material);
-  const Totals start = compute_totals(sim.particles());
+  const Totals start = mirror.whole(compute_totals(sim.particles()));
   double worst_energy = 0, worst_momentum = 0;
   double next = scene.sample_interval;
   while (sim.time() < scene.end_time * (1 - 1e-12)) {
@@ -102,7 +103,7 @@ int main(int argc, char** argv) {
     }
     if (sim.time() < next * (1 - 1e-12) && sim.time() < scene.end_time * (1 - 1e-12)) continue;
     next += scene.sample_interval;
-    const Totals now = compute_totals(sim.particles());
+    const Totals now = mirror.whole(compute_totals(sim.particles()));
     CHECK(bad_points(sim.particles(), thermal, sim.time()) == 0);
     CHECK(now.mass == start.mass);
     worst_momentum = std::max(worst_momentum, std::hypot(now.momentum[0], now.momentum[1]) / start.momentum_magnitude);

@@ -54,7 +54,8 @@ void run_case(const Case& c) {
   char text[512];
   std::snprintf(text, sizeof text,
                 "velocity = %g m/s\nporosity = 1\nwidth = 40 um\ntarget_height = 1.6 mm\nflyer_height = 1.6 mm\n"
-                "cell_size = 10 um\nend_time = 200 ns\nshape_function = %s\nplasticity = %s\nhardening_beta = %g\n",
+                "cell_size = 10 um\nend_time = 200 ns\nshape_function = %s\nplasticity = %s\nhardening_beta = %g\n"
+                "symmetry = off\n",  // the whole impact, to check its momentum (test_symmetry: the mirrored run)
                 v, c.shape, c.plasticity ? "on" : "off", c.hardening_beta);
   const Scene scene = parse_scene(text, "hugoniot");
   InitialState<2> initial = build_initial_state<2>(scene);

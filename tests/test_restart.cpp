@@ -71,36 +71,43 @@ int main(int argc, char** argv) {
   const fs::path root = fs::temp_directory_path() / ("mpmshock_test_restart_" + std::to_string(::getpid()));
   fs::remove_all(root);
 
-  for (int threads : {1, 2}) {
-    omp_set_num_threads(threads);
-    const fs::path whole = root / ("whole" + std::to_string(threads)), half = root / ("half" + std::to_string(threads));
-    CHECK(run(scene, whole, {"end_time=60ns"}).exit_code == kExitOk);
-    CHECK(run(scene, half, {"end_time=30ns"}).exit_code == kExitOk);
-    const RunResult r = restart_run((half / "snapshot_00001.h5").string(), {"end_time=60ns"}, {true, false, true});
-    CHECK(r.exit_code == kExitOk);
-    CHECK(std::abs(r.start_time - 30e-9) < 1e-20 && std::abs(r.end_time - 60e-9) < 1e-20);
-    check_same_snapshot(whole / "snapshot_00002.h5", half / "snapshot_00002.h5");
-    CHECK(slurp(whole / "regions.csv") == slurp(half / "regions.csv"));
-    CHECK(slurp(whole / "conservation.csv") == slurp(half / "conservation.csv"));
-    CHECK(slurp(whole / "snapshots.xdmf") == slurp(half / "snapshots.xdmf"));
-    // A restart into a new directory continues the same way.
-    const fs::path other = root / ("other" + std::to_string(threads));
-    CHECK(restart_run((half / "snapshot_00001.h5").string(), {"end_time=60ns", "output_dir=" + other.string()},
-                      {true, false})
-              .exit_code == kExitOk);
-    check_same_snapshot(whole / "snapshot_00002.h5", other / "snapshot_00002.h5");
+  // Both ways of running a symmetric scene: the target alone with its mirror image, and the whole.
+  for (const std::string symmetry : {"symmetry=on", "symmetry=off"}) {
+    const std::string tag = symmetry.substr(9) + "_";
+    for (int threads : {1, 2}) {
+      omp_set_num_threads(threads);
+      const fs::path whole = root / (tag + "whole" + std::to_string(threads));
+      const fs::path half = root / (tag + "half" + std::to_string(threads));
+      CHECK(run(scene, whole, {"end_time=60ns", symmetry}).exit_code == kExitOk);
+      CHECK(run(scene, half, {"end_time=30ns", symmetry}).exit_code == kExitOk);
+      const RunResult r = restart_run((half / "snapshot_00001.h5").string(), {"end_time=60ns"}, {true, false, true});
+      CHECK(r.exit_code == kExitOk);
+      CHECK(std::abs(r.start_time - 30e-9) < 1e-20 && std::abs(r.end_time - 60e-9) < 1e-20);
+      check_same_snapshot(whole / "snapshot_00002.h5", half / "snapshot_00002.h5");
+      CHECK(slurp(whole / "regions.csv") == slurp(half / "regions.csv"));
+      CHECK(slurp(whole / "conservation.csv") == slurp(half / "conservation.csv"));
+      CHECK(slurp(whole / "snapshots.xdmf") == slurp(half / "snapshots.xdmf"));
+      // A restart into a new directory continues the same way.
+      const fs::path other = root / (tag + "other" + std::to_string(threads));
+      CHECK(restart_run((half / "snapshot_00001.h5").string(), {"end_time=60ns", "output_dir=" + other.string()},
+                        {true, false})
+                .exit_code == kExitOk);
+      check_same_snapshot(whole / "snapshot_00002.h5", other / "snapshot_00002.h5");
+    }
+    // The thread count changes nothing.
+    check_same_snapshot(root / (tag + "whole1") / "snapshot_00002.h5", root / (tag + "whole2") / "snapshot_00002.h5");
+    CHECK(slurp(root / (tag + "whole1") / "regions.csv") == slurp(root / (tag + "whole2") / "regions.csv"));
   }
-  // The thread count changes nothing.
-  check_same_snapshot(root / "whole1" / "snapshot_00002.h5", root / "whole2" / "snapshot_00002.h5");
-  CHECK(slurp(root / "whole1" / "regions.csv") == slurp(root / "whole2" / "regions.csv"));
 
   // Restarting mid-run would discard later outputs: refused without --force, allowed with it.
-  CHECK_THROWS_WITH(restart_run((root / "whole1" / "snapshot_00001.h5").string(), {}, {true, false}), "--force",
+  CHECK_THROWS_WITH(restart_run((root / "on_whole1" / "snapshot_00001.h5").string(), {}, {true, false}), "--force",
                     "1 later snapshot");
   // Keys that are the saved state cannot change.
-  CHECK_THROWS_WITH(restart_run((root / "whole1" / "snapshot_00002.h5").string(), {"cell_size=5um"}, {true, false}),
+  CHECK_THROWS_WITH(restart_run((root / "on_whole1" / "snapshot_00002.h5").string(), {"cell_size=5um"}, {true, false}),
                     "'cell_size'", "cannot change on restart");
-  CHECK_THROWS_WITH(restart_run((root / "whole1" / "snapshot_00002.h5").string(), {}, {true, false}), "'end_time'",
+  CHECK_THROWS_WITH(restart_run((root / "on_whole1" / "snapshot_00002.h5").string(), {"symmetry=off"}, {true, false}),
+                    "'symmetry'", "cannot change on restart");
+  CHECK_THROWS_WITH(restart_run((root / "on_whole1" / "snapshot_00002.h5").string(), {}, {true, false}), "'end_time'",
                     "later end_time");
   CHECK_THROWS_WITH(read_snapshot<2>((root / "whole1" / "regions.csv").string()), "regions.csv");
   fs::remove_all(root);

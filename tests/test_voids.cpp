@@ -86,7 +86,9 @@ int main() {
     CHECK_REL(st.target.porosity(), 1.4, 0.005);
     CHECK_REL(porosity_of(st.target, st.flyer), 1.4, 0.005);
     CHECK(st.flyer.material_points == st.target.material_points);
-    CHECK(st.particles.size() == st.flyer.material_points + st.target.material_points);
+    // symmetry = auto: the target's points are simulated, the flyer is their mirror image
+    CHECK(st.mirror.on() && st.particles.size() == st.target.material_points);
+    CHECK(st.mirror.whole(st.particles).size() == st.flyer.material_points + st.target.material_points);
     CHECK_THROWS_WITH(build_initial_state<2>(parse_scene("porosity = 2.5\nvoid_radius = 10 um\ncell_size = 5 um\n"
                                                       "width = 0.2 mm\ntarget_height = 0.3 mm\n"
                                                       "flyer_height = 0.3 mm\nvoid_min_gap = 5 um\n",

@@ -48,6 +48,7 @@ struct Model {
   double speed_limit;  // |v| above this is a numerical runaway, not physics
   double conductivity = 0.0;   // k with heat_conduction = on, else 0
   double diffusivity = 0.0;    // k / (rho0 c_v) [m2/s]
+  bool symmetry_plane = false;  // symmetry = on: the target alone, mirrored about y = 0
 
   explicit Model(const Scene& s);
 

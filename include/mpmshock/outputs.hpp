@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mpmshock/mirror_image.hpp"
 #include "mpmshock/probes.hpp"
 #include "mpmshock/run_directory.hpp"
 #include "mpmshock/simulation.hpp"
@@ -20,7 +21,9 @@ template <int D>
 class Outputs {
  public:
   // Opens regions.csv and conservation.csv in `dir`: new (with headers), or appended to (restart).
-  Outputs(const Scene& scene, const fs::path& dir, bool append);
+  // With a mirror image on, the outputs show the whole impact, the flyer as the target's mirror
+  // image (mirror_image.hpp).
+  Outputs(const Scene& scene, const fs::path& dir, bool append, MirrorImage<D> mirror = {});
 
   // Probes to follow (probes.csv, new or appended to like the other CSVs); none: no file.
   void follow(Probes<D> probes, double start_time, bool append);
@@ -37,10 +40,14 @@ class Outputs {
   void sample(const Simulation<D>& sim, double dt);
   // snapshot_NNNNN.h5 (NNNNN = run.schedule.snapshot_index) and the XDMF index.
   void snapshot(const Simulation<D>& sim, const RunState& run);
+  // The conserved totals of the whole impact.
+  Totals totals(const Simulation<D>& sim) const { return mirror_.whole(compute_totals(sim.particles())); }
 
  private:
   const Scene& scene_;
   fs::path dir_;
+  MirrorImage<D> mirror_;
+  bool regions_need_whole_ = false;  // a band region counts flyer points too
   std::string xdmf_path() const { return (dir_ / kXdmfName).string(); }
   void write_probe_rows(const Simulation<D>& sim);
   File regions_, conservation_, probes_file_;

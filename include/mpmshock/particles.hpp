@@ -68,7 +68,24 @@ struct Particles {
   void enable_cold_work(bool on);
   // Allocates (or drops) plastic_heat, all zero.
   void enable_plastic_heat(bool on);
+  // Allocates the optional fields `other` has (and drops the others).
+  void enable_fields_of(const Particles& other);
+  // Appends a copy of point p of `from`, which holds the same fields, every field as it is there.
+  void append_copy(const Particles& from, std::size_t p);
   void reserve(std::size_t n);
+
+  // Calls f(&Particles::field) for every per-point field this layout holds, for the bulk
+  // operations (copy, reserve, bytes per point) that must not forget one.
+  template <class F>
+  void for_each_member(F&& f) const {
+    f(&Particles::x), f(&Particles::v), f(&Particles::m), f(&Particles::V0), f(&Particles::F), f(&Particles::L);
+    f(&Particles::work), f(&Particles::E), f(&Particles::P), f(&Particles::q), f(&Particles::id), f(&Particles::body);
+    if (strength_) f(&Particles::s), f(&Particles::eps_p);
+    if (back_stress_) f(&Particles::alpha);
+    if (failure_) f(&Particles::failure_J), f(&Particles::damage);
+    if (stored_) f(&Particles::E_stored);
+    if (plastic_heat_) f(&Particles::plastic_heat);
+  }
   // Memory this layout holds per point, for --check and the benchmarks.
   std::size_t bytes_per_point() const;
 

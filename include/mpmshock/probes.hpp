@@ -9,8 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "mpmshock/mirror_image.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
+#include "mpmshock/setup.hpp"
 #include "mpmshock/temperature.hpp"
 
 namespace mpmshock {
@@ -28,8 +30,10 @@ class Probes {
   bool empty() const { return probes_.empty(); }
   // The time of the first row after time t (probe_interval 0: every step).
   double next_after(double t) const;
-  // One row per probe at the points' current state.
-  void write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal) const;
+  // One row per probe at the points' current state; with a mirror image on, a flyer point is read
+  // as the mirror of the target point it is the image of.
+  void write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal,
+                  const MirrorImage<D>& mirror) const;
 
  private:
   struct Probe {
@@ -39,6 +43,13 @@ class Probes {
   std::vector<Probe> probes_;
   double interval_ = 0.0;
 };
+
+// The scene's probes, resolved on the whole impact's initial points.
+template <int D>
+Probes<D> probes_of(const Scene& scene, const InitialState<D>& initial) {
+  if (scene.probes.empty()) return {};
+  return Probes<D>(scene, initial.mirror.whole(initial.particles), initial.grid.width());
+}
 
 extern template class Probes<2>;
 extern template class Probes<3>;

@@ -32,8 +32,9 @@ struct RunResult {
   double start_time = 0.0;  // 0, or the time restarted from
   double end_time = 0.0;
   double wall_seconds = 0.0;
-  std::size_t points = 0;
-  double point_steps_per_second = 0.0;
+  std::size_t points = 0;   // simulated: with symmetry = on the target's, half the outputs' points
+  bool symmetry = false;    // symmetry = on: the flyer is the target's mirror image
+  double point_steps_per_second = 0.0;  // of the simulated points
   int threads = 1;                           // the most threads the run used
   std::int64_t steps_with_fewer_threads = 0;  // steps the thread tuner ran with fewer (thread_tuner.hpp)
   double mass_error = 0.0, momentum_error = 0.0, energy_error = 0.0;  // relative, since t = 0

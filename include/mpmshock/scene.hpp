@@ -25,6 +25,11 @@ enum class ShapeFunction { bilinear, gimp, bspline2 };
 // out the compaction heating of collapsing voids, which is what the paper's reported numbers fit.
 enum class TemperatureModel { energy, paper };
 
+// Symmetry about the impact plane y = 0 (symmetry_plane.hpp, mirror_image.hpp): on simulates the
+// target alone and takes the flyer as its mirror image; automatic (the key's "auto") becomes on or
+// off when the scene is parsed, so a parsed Scene holds on or off.
+enum class Symmetry { automatic, on, off };
+
 struct RegionSpec {
   // bottom: target points with y in [y1, y1 + height]        (a = y1, b = height)
   // top:    target points with y in [y_top - height, y_top]   (b = height), y_top = highest target point
@@ -68,6 +73,7 @@ struct Scene {
   double target_height = 5e-3;
   double flyer_height = 5e-3;
   double width = 2e-3;
+  Symmetry symmetry = Symmetry::automatic;
 
   // Discretisation and time stepping
   double cell_size = 20e-6;
@@ -141,6 +147,10 @@ std::string resolved_scene(const Scene& scene);
 
 // The documentation table of all keys (markdown), as in the README.
 std::string key_reference_markdown();
+
+// Why the flyer is not the mirror image of the target about y = 0 (its height, its own voids), or
+// "" when it is: the condition for symmetry = on.
+std::string asymmetry_of(const Scene& scene);
 
 // The paper's default regions B800, B400, B100, T800, T400, T100.
 std::vector<RegionSpec> paper_regions();

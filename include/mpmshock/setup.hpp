@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/mirror_image.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/voids.hpp"
@@ -25,10 +26,13 @@ inline double porosity_of(const BodySummary& a, const BodySummary& b) {
   return porosity_of(a.lattice_points + b.lattice_points, a.material_points + b.material_points);
 }
 
+// The initial state of a run: the grid and the points it simulates. With symmetry = on these are
+// the target's alone and `mirror` makes the whole impact of them (mirror_image.hpp).
 template <int D>
 struct InitialState {
   GridGeometry<D> grid;
   Particles<D> particles;
+  MirrorImage<D> mirror;
   BodySummary target, flyer;
 };
 
@@ -54,7 +58,8 @@ GridGeometry<D> build_grid_geometry(const Scene& scene);
 
 // Builds the grid and the material points:
 // a regular lattice of particles_per_cell^D points per cell, the flyer in [-flyer_height, 0]
-// moving up at +velocity, the target in [0, target_height] moving down, voids cut from both.
+// moving up at +velocity, the target in [0, target_height] moving down, voids cut from both; with
+// symmetry = on, the target's points only (the flyer in `mirror`).
 // Throws SceneError (naming the porosity key) if the voids cannot be placed.
 template <int D>
 InitialState<D> build_initial_state(const Scene& scene);

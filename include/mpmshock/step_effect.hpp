@@ -32,8 +32,12 @@ class StepEffect {
   virtual ~StepEffect() = default;
   virtual const char* name() const = 0;
 
+  // After P2G, before anything reads the grid (the symmetry plane folds its mirror's share here).
+  virtual void after_to_grid(Grid<D>&, RowRange) {}
   // After the grid momentum update: nodal v^{n+1} and a are set (boundary conditions act here).
   virtual void after_grid_update(Grid<D>&, RowRange, double /*dt*/) {}
+  // MUSL: after the points' momenta are scattered again, before the re-mapped velocity is formed.
+  virtual void before_remap(Grid<D>&, RowRange) {}
   // MUSL: after the re-mapped nodal velocity v_remap is set.
   virtual void after_remap(Grid<D>&, RowRange) {}
   // After the constitutive update of every point.

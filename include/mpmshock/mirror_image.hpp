@@ -1,0 +1,67 @@
+// The flyer as the mirror image of the target (symmetry = on). A symmetric scene (the flyer the
+// target's mirror image about y = 0, moving the other way) stays symmetric, so the run simulates the
+// target's points alone (symmetry_plane.hpp keeps the plane) and every output shows the whole
+// impact: the flyer's points are the target's reflected, y -> -y, with v_y, the xy (and yz)
+// components of F, L, s and alpha negated, and the ids a whole-domain run gives them.
+//
+//   snapshots   the whole set of points, as a whole-domain run writes them (same layout and ids)
+//   regions     the target's regions from the simulated points; a band reaching below y = 0 from
+//               the whole set
+//   conservation  whole-domain totals: twice the target's mass, x momentum and energies, y momentum 0
+//   probes      a flyer point is read as the mirror of its target point
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mpmshock/diagnostics.hpp"
+#include "mpmshock/particles.hpp"
+
+namespace mpmshock {
+
+template <int D>
+class MirrorImage {
+ public:
+  // Off: the points simulated are the whole.
+  MirrorImage() = default;
+  // From the whole initial state (flyer points first, as set-up makes them): which target point each
+  // flyer point mirrors. Throws std::logic_error if a flyer point has no exact mirror image.
+  explicit MirrorImage(const Particles<D>& whole);
+
+  bool on() const { return on_; }
+  std::size_t flyer_points() const { return mirror_of_.size(); }
+
+  // The points to simulate: the target's, numbered from 0 in their whole-run order.
+  Particles<D> half(const Particles<D>& whole) const;
+  // The whole set from the simulated points: the mirrored flyer, then the target, in id order.
+  Particles<D> whole(const Particles<D>& half) const;
+  // The totals of the whole from those of the simulated points.
+  Totals whole(const Totals& half) const;
+  // A sum over the whole (of a quantity the mirror image does not change sign) from its sum over
+  // the simulated points.
+  double whole_sum(double half) const { return on_ ? 2.0 * half : half; }
+
+  // A point of the whole run (by id) as the simulated point it is or mirrors.
+  struct Source {
+    std::uint32_t point;
+    bool mirrored;
+  };
+  Source source_of(std::uint32_t whole_id) const {
+    if (!on_) return {whole_id, false};
+    const std::size_t n = mirror_of_.size();
+    return whole_id < n ? Source{mirror_of_[whole_id], true} : Source{static_cast<std::uint32_t>(whole_id - n), false};
+  }
+
+ private:
+  bool on_ = false;
+  std::vector<std::uint32_t> mirror_of_;  // per flyer point (its id), the simulated point it mirrors
+};
+
+// Reflects point p in place about y = 0.
+template <int D>
+void reflect_point(Particles<D>& pts, std::size_t p);
+
+extern template class MirrorImage<2>;
+extern template class MirrorImage<3>;
+
+}  // namespace mpmshock
