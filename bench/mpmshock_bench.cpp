@@ -163,8 +163,9 @@ int threads_mode(int repeats) {
 
 // --- speed mode -------------------------------------------------------------------------------
 
-// configs/speed.scene with its width set to `width`.
-Scene speed_scene(double width) {
+// configs/speed.scene with its width set to `width`, simulated whole (symmetry = off) or as the
+// target alone with its mirror image (on).
+Scene speed_scene(double width, const char* symmetry = "off") {
   std::ifstream in(MPMSHOCK_SOURCE_DIR "/configs/speed.scene");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (text.empty()) {
@@ -173,7 +174,7 @@ Scene speed_scene(double width) {
   }
   char w[64];
   std::snprintf(w, sizeof w, "width=%.9g", width);
-  return parse_scene(text, "configs/speed.scene", {w});
+  return parse_scene(text, "configs/speed.scene", {w, std::string("symmetry=") + symmetry});
 }
 
 struct SpeedResult {
@@ -236,10 +237,10 @@ Result in_child(Measure&& measure) {
 
 // Runs the speed scene at `width` with `threads` threads in a child process (so its peak memory
 // is its own) and returns what it measured.
-SpeedResult measure_speed(double width, int threads, int steps) {
+SpeedResult measure_speed(double width, int threads, int steps, const char* symmetry = "off") {
   return in_child<SpeedResult>([&] {
     omp_set_num_threads(threads);
-    const Scene scene = speed_scene(width);
+    const Scene scene = speed_scene(width, symmetry);
     SpeedResult r;
     {
       InitialState<2> initial = build_initial_state<2>(scene);
@@ -312,7 +313,7 @@ int speed_mode(int repeats, double max_points) {
               sizes.end());
   const double bandwidth = in_child<double>([] { return triad_bandwidth(5); });
   std::printf("mpmshock_bench speed: configs/speed.scene (solid plates, 5 um cells, 2 x 2 points per cell, "
-              "+-1000 m/s), width scaled; best of %d; %d threads at most\n",
+              "+-1000 m/s, symmetry = off: the whole impact), width scaled; best of %d; %d threads at most\n",
               repeats, all);
   std::printf("memory bandwidth (STREAM triad, %d threads): %.2f GB/s\n\n", all, bandwidth / 1e9);
   std::printf("| points | threads | point-steps/s (M) | ns per point-step | bytes/point (peak RSS) | "
@@ -332,6 +333,23 @@ int speed_mode(int repeats, double max_points) {
       std::fflush(stdout);
       if (all == 1) break;
     }
+  // Symmetry: the same impact (640 k points in all) as the target alone with its mirror image.
+  std::printf("\nsymmetry (the 640 k-point scene, %d threads): seconds per step, best of %d\n\n", all, repeats);
+  std::printf("| symmetry | points simulated | seconds per step | time to solution, off / on |\n|---|---|---|---|\n");
+  double step_seconds[2] = {0.0, 0.0};
+  std::size_t simulated[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const char* symmetry = k == 0 ? "off" : "on";
+    SpeedResult best;
+    for (int r = 0; r < repeats; ++r) {
+      const SpeedResult m = measure_speed(1e-3, all, 40, symmetry);
+      if (m.rate > best.rate) best = m;
+    }
+    simulated[k] = best.points;
+    step_seconds[k] = static_cast<double>(best.points) / best.rate;
+  }
+  std::printf("| off | %zu | %.4f | |\n| on | %zu | %.4f | %.2f |\n", simulated[0], step_seconds[0], simulated[1],
+              step_seconds[1], step_seconds[0] / step_seconds[1]);
   // The share ahead of the elastic precursor does not depend on the width: a narrow column of the
   // same plates, run to the end.
   const double share = unreached_share(speed_scene(50e-6));
