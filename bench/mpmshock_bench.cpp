@@ -16,8 +16,10 @@
 // scaled) on 1 thread and on all threads: point-steps per second, bytes per point (the peak
 // resident memory of a process that ran only that case, over its points), the machine's memory
 // bandwidth (a STREAM triad in the same run) and the share of that bound the step reaches under a
-// model of the bytes each step must move; and the share of point-steps spent on material that
-// nothing has reached yet (ahead of the elastic precursor).
+// model of the bytes each step must move, all with every point computed; the time to solution of
+// the whole speed scene with every point computed, with symmetry, and with symmetry and
+// skip_unreached; and the share of point-steps spent on material that nothing has reached yet
+// (ahead of the elastic precursor) when it is computed.
 #include <omp.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -163,9 +165,9 @@ int threads_mode(int repeats) {
 
 // --- speed mode -------------------------------------------------------------------------------
 
-// configs/speed.scene with its width set to `width`, simulated whole (symmetry = off) or as the
-// target alone with its mirror image (on).
-Scene speed_scene(double width, const char* symmetry = "off") {
+// configs/speed.scene with its width set to `width`, by default every point computed (symmetry and
+// skip_unreached off: the cost per point-step of the method itself).
+Scene speed_scene(double width, std::vector<std::string> settings = {"symmetry=off", "skip_unreached=off"}) {
   std::ifstream in(MPMSHOCK_SOURCE_DIR "/configs/speed.scene");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (text.empty()) {
@@ -174,7 +176,8 @@ Scene speed_scene(double width, const char* symmetry = "off") {
   }
   char w[64];
   std::snprintf(w, sizeof w, "width=%.9g", width);
-  return parse_scene(text, "configs/speed.scene", {w, std::string("symmetry=") + symmetry});
+  settings.push_back(w);
+  return parse_scene(text, "configs/speed.scene", settings);
 }
 
 struct SpeedResult {
@@ -183,6 +186,12 @@ struct SpeedResult {
   double layout_bytes = 0.0;     // bytes per point of the particle layout (Particles::bytes_per_point)
   double modelled_traffic = 0.0; // bytes a step must move per point, by the model below
   std::size_t points = 0;
+};
+
+struct SolutionTime {
+  std::size_t points = 0;
+  std::int64_t steps = 0;
+  double seconds = 0.0;
 };
 
 double peak_resident_bytes() {
@@ -237,10 +246,10 @@ Result in_child(Measure&& measure) {
 
 // Runs the speed scene at `width` with `threads` threads in a child process (so its peak memory
 // is its own) and returns what it measured.
-SpeedResult measure_speed(double width, int threads, int steps, const char* symmetry = "off") {
+SpeedResult measure_speed(double width, int threads, int steps) {
   return in_child<SpeedResult>([&] {
     omp_set_num_threads(threads);
-    const Scene scene = speed_scene(width, symmetry);
+    const Scene scene = speed_scene(width);
     SpeedResult r;
     {
       InitialState<2> initial = build_initial_state<2>(scene);
@@ -313,7 +322,8 @@ int speed_mode(int repeats, double max_points) {
               sizes.end());
   const double bandwidth = in_child<double>([] { return triad_bandwidth(5); });
   std::printf("mpmshock_bench speed: configs/speed.scene (solid plates, 5 um cells, 2 x 2 points per cell, "
-              "+-1000 m/s, symmetry = off: the whole impact), width scaled; best of %d; %d threads at most\n",
+              "+-1000 m/s; every point computed: symmetry and skip_unreached off), width scaled; best of %d; %d threads "
+              "at most\n",
               repeats, all);
   std::printf("memory bandwidth (STREAM triad, %d threads): %.2f GB/s\n\n", all, bandwidth / 1e9);
   std::printf("| points | threads | point-steps/s (M) | ns per point-step | bytes/point (peak RSS) | "
@@ -333,23 +343,29 @@ int speed_mode(int repeats, double max_points) {
       std::fflush(stdout);
       if (all == 1) break;
     }
-  // Symmetry: the same impact (640 k points in all) as the target alone with its mirror image.
-  std::printf("\nsymmetry (the 640 k-point scene, %d threads): seconds per step, best of %d\n\n", all, repeats);
-  std::printf("| symmetry | points simulated | seconds per step | time to solution, off / on |\n|---|---|---|---|\n");
-  double step_seconds[2] = {0.0, 0.0};
-  std::size_t simulated[2] = {0, 0};
-  for (int k = 0; k < 2; ++k) {
-    const char* symmetry = k == 0 ? "off" : "on";
-    SpeedResult best;
-    for (int r = 0; r < repeats; ++r) {
-      const SpeedResult m = measure_speed(1e-3, all, 40, symmetry);
-      if (m.rate > best.rate) best = m;
-    }
-    simulated[k] = best.points;
-    step_seconds[k] = static_cast<double>(best.points) / best.rate;
+  // Time to solution: the whole speed scene to 250 ns, every point computed, then with each shortcut.
+  std::printf("\ntime to solution: configs/speed.scene (640 k points) to 250 ns, %d threads\n\n", all);
+  std::printf("| settings | points simulated | steps | wall time (s) | speed-up |\n|---|---|---|---|---|\n");
+  const std::vector<std::vector<std::string>> shortcuts = {
+      {"symmetry=off", "skip_unreached=off"}, {"symmetry=on", "skip_unreached=off"}, {"symmetry=on", "skip_unreached=on"}};
+  double first = 0.0;
+  for (const auto& settings : shortcuts) {
+    const SolutionTime t = in_child<SolutionTime>([&] {
+      omp_set_num_threads(all);
+      const Scene scene = speed_scene(1e-3, settings);
+      InitialState<2> initial = build_initial_state<2>(scene);
+      Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
+      const auto t0 = WallClock::now();
+      while (sim.time() < scene.end_time * (1 - 1e-12))
+        if (!sim.step(std::min(sim.stable_time_step(), scene.end_time - sim.time())).ok()) std::exit(1);
+      return SolutionTime{sim.particles().size(), sim.steps(),
+                          std::chrono::duration<double>(WallClock::now() - t0).count()};
+    });
+    if (first == 0.0) first = t.seconds;
+    std::printf("| %s, %s | %zu | %lld | %.1f | %.2f |\n", settings[0].c_str(), settings[1].c_str(), t.points,
+                static_cast<long long>(t.steps), t.seconds, first / t.seconds);
+    std::fflush(stdout);
   }
-  std::printf("| off | %zu | %.4f | |\n| on | %zu | %.4f | %.2f |\n", simulated[0], step_seconds[0], simulated[1],
-              step_seconds[1], step_seconds[0] / step_seconds[1]);
   // The share ahead of the elastic precursor does not depend on the width: a narrow column of the
   // same plates, run to the end.
   const double share = unreached_share(speed_scene(50e-6));

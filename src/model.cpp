@@ -51,6 +51,7 @@ Model::Model(const Scene& s)
       speed_limit(10.0 * (2.0 * s.velocity + s.material.sound_speed)) {
   if (s.effects.thermal) thermal.emplace(s.material, s.temperature_model);
   symmetry_plane = s.symmetry == Symmetry::on;
+  skip_unreached = s.skip_unreached;
   if (s.effects.heat_conduction && s.material.thermal_conductivity > 0.0) {
     conductivity = s.material.thermal_conductivity;
     diffusivity = conductivity / (s.material.density * s.material.specific_heat);

@@ -22,7 +22,7 @@ const std::set<std::string>& restart_changeable_keys() {
   static const std::set<std::string> keys = {
       "end_time",      "cfl",        "sample_interval", "snapshot_interval", "snapshot_compression",
       "snapshot_grid", "output_dir", "av_linear",       "av_quadratic",      "artificial_viscosity",
-      "update_scheme", "thermal",  "flip_fraction", "probe_interval", "snapshot_times"};
+      "update_scheme", "thermal",  "flip_fraction", "probe_interval", "snapshot_times", "skip_unreached"};
   return keys;
 }
 
@@ -239,7 +239,14 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   const bool from_initial = !scene.probes.empty() || scene.symmetry == Symmetry::on;
   const InitialState<D> initial = from_initial ? build_initial_state<D>(scene) : InitialState<D>{};
   const MirrorImage<D>& mirror = initial.mirror;
-  Simulation<D> sim(scene, grid, mirror.on() ? mirror.half(r.points) : std::move(r.points), r.run.clock);
+  Particles<D> points = mirror.on() ? mirror.half(r.points) : std::move(r.points);
+  const Clock& clock = r.run.clock;
+  if (scene.skip_unreached && clock.unreached_tail != Clock::kNoneSaved) try {  // as Simulation will read it
+      UnreachedMaterial<D>(scene, Model(scene), points, clock.unreached_head, clock.unreached_tail);
+    } catch (const SceneError& e) {
+      throw SceneError("snapshot " + snapshot + ": " + e.what());
+    }
+  Simulation<D> sim(scene, grid, std::move(points), clock);
   Outputs<D> out(scene, dir, append, mirror);
   if (!scene.probes.empty())
     out.follow(probes_of(scene, initial), sim.time(), append && fs::exists(dir / "probes.csv"));

@@ -289,6 +289,10 @@ const std::vector<Key>& keys() {
                          "velocity noise; below 1 damps the noise, its kinetic energy becoming heat; not energy-consistent "
                          "in jetting porous flows (README, Method)",
                          FIELD(flip_fraction)));
+    k.push_back(flag("skip_unreached", "on",
+                     "advance material nothing has reached yet (ahead of the fastest signal) in closed form, "
+                     "x += v0 dt, leaving it out of the transfers; off: compute it (the same to round-off)",
+                     FIELD(skip_unreached)));
     k.push_back(quantity("av_linear", D::none, non_negative(), "0.2",
                          "linear artificial viscosity coefficient A1", FIELD(av_linear)));
     k.push_back(quantity("av_quadratic", D::none, non_negative(), "2",

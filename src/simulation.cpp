@@ -14,8 +14,8 @@ namespace mpmshock {
 namespace {
 
 template <int D, class Shape>
-bool bin_points(StripBins& bins, const Particles<D>& pts, const GridGeometry<D>& g) {
-  return bins.build<Shape>(pts.x, g);
+bool bin_points(StripBins& bins, const Particles<D>& pts, PointRange range, const GridGeometry<D>& g) {
+  return bins.build<Shape>(pts.x, range, g);
 }
 
 // The kernels for one choice of shape function and laws: every combination the variants of
@@ -69,10 +69,13 @@ void print_vector(std::ostream& out, const Vec<D>& v) {
 template <int D>
 Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock)
     : model_(scene), points_(std::move(points)), grid_(grid), kernels_(kernels_for<D>(model_)),
-      effects_(effects_for<D>(model_, grid)), clock_(clock) {
+      effects_(effects_for<D>(model_, grid)), unreached_(points_.size()), clock_(clock) {
   points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
   if (model_.symmetry_plane && std::find(points_.body.begin(), points_.body.end(), Body::flyer) != points_.body.end())
     throw std::logic_error("symmetry = on simulates the target's points alone (build_initial_state gives them)");
+  if (model_.skip_unreached && clock.unreached_tail != Clock::kNoneSaved)
+    unreached_ = UnreachedMaterial<D>(scene, model_, points_, clock.unreached_head, clock.unreached_tail);
+  remember_unreached();
   heat_.conductivity = model_.conductivity;
   heat_.specific_heat = scene.material.specific_heat;
   if (model_.conducts_heat())
@@ -82,12 +85,21 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
 template <int D>
 Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points)
     : Simulation(scene, grid, std::move(points), Clock{}) {
+  if (model_.skip_unreached) unreached_ = UnreachedMaterial<D>(scene, model_, points_);
+  remember_unreached();
   clock_.max_signal = initial_signal_speed(points_, model_);
 }
 
 template <int D>
+void Simulation<D>::remember_unreached() {
+  clock_.unreached_head = unreached_.head();
+  clock_.unreached_tail = unreached_.tail();
+}
+
+template <int D>
 StepStatus Simulation<D>::step(double dt) {
-  if (!kernels_.bin(bins_, points_, grid_.geo))                        // strips for race-free scatter
+  const PointRange reached = unreached_.computed();                    // all but what nothing has reached
+  if (!kernels_.bin(bins_, points_, reached, grid_.geo))               // strips for race-free scatter
     return {StepStatus::Code::left_grid, points_.size()};             // moves check this; here only a bad restart
   const RowRange rows = bins_.rows();
   const bool musl = model_.scheme == UpdateScheme::musl;
@@ -95,10 +107,10 @@ StepStatus Simulation<D>::step(double dt) {
   kernels_.to_grid(points_, bins_, grid_);                             // P2G: m_i, p_i, f_i
   for (auto& e : effects_) e->after_to_grid(grid_, rows);              //   (symmetry plane: the mirror's share)
   if (kernels_.conduct)                                                //   heat conduction: E_p
-    kernels_.conduct(points_, bins_, grid_, *model_.thermal, heat_, dt);
+    kernels_.conduct(points_, reached, bins_, grid_, *model_.thermal, heat_, dt);
   update_grid_momentum(grid_, rows, dt);                               // a_i, v_i^{n+1}
   for (auto& e : effects_) e->after_grid_update(grid_, rows, dt);      //   (boundary conditions)
-  kernels_.velocity_to_points(points_, bins_, grid_, dt,               // G2P: FLIP (/PIC) v_p (MUSL: re-map m_p v_p)
+  kernels_.velocity_to_points(points_, reached, bins_, grid_, dt,      // G2P: FLIP (/PIC) v_p (MUSL: re-map m_p v_p)
                               model_.flip_fraction);
   if (musl) {
     for (auto& e : effects_) e->before_remap(grid_, rows);
@@ -106,16 +118,19 @@ StepStatus Simulation<D>::step(double dt) {
     for (auto& e : effects_) e->after_remap(grid_, rows);
   }
   const std::size_t left = kernels_.gradient_work_and_move(            // L_p, work_p, x_p
-      points_, grid_, musl ? grid_.v_remap : grid_.v, dt);
-  const StressUpdateResult update = kernels_.update_points(points_, model_, dt);  // E, F, s, P, q
+      points_, reached, grid_, musl ? grid_.v_remap : grid_.v, dt);
+  unreached_.advance(points_, dt);                                     //   the rest: x_p += v0 dt
+  const StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt);  // E, F, s, P, q
   clock_.time += dt;
   ++clock_.steps;
-  clock_.max_signal = update.max_signal;
+  clock_.max_signal = std::max(update.max_signal, unreached_.signal());
   clock_.work_mismatch += update.work_mismatch;
   if (update.first_bad != ~std::size_t{0}) return {StepStatus::Code::bad_state, update.first_bad};
   if (left != kNoPoint) return {StepStatus::Code::left_grid, left};
   for (auto& e : effects_)
     if (const StepStatus s = e->after_point_update(points_, dt); !s.ok()) return s;
+  unreached_.follow(points_);                                          // compute what the step reached
+  remember_unreached();
   return {};
 }
 

@@ -124,6 +124,10 @@ void write_restart(hid_t file, const Particles<D>& p, const RunState& run) {
   const hsize_t N = p.size(), C = kDeviatorComponents<D>;
   h5::write_double_attribute(g, "max_signal", run.clock.max_signal);
   h5::write_double_attribute(g, "work_mismatch", run.clock.work_mismatch);
+  if (run.clock.unreached_tail != Clock::kNoneSaved) {  // indices of the simulated points (unreached.hpp)
+    h5::write_int_attribute(g, "unreached_head", static_cast<std::int64_t>(run.clock.unreached_head));
+    h5::write_int_attribute(g, "unreached_tail", static_cast<std::int64_t>(run.clock.unreached_tail));
+  }
   h5::write_int_attribute(g, "snapshot_index", run.schedule.snapshot_index);
   h5::write_double_attribute(g, "last_dt", run.schedule.last_dt);
   const Totals& t = run.initial;
@@ -421,6 +425,12 @@ Restart<D> read_state(const std::string& path) {
     const hid_t g = rg.get();
     run.clock.max_signal = h5::read_double_attribute(g, "max_signal");
     run.clock.work_mismatch = h5::has_attribute(g, "work_mismatch") ? h5::read_double_attribute(g, "work_mismatch") : 0.0;
+    if (h5::has_attribute(g, "unreached_tail")) {
+      const std::int64_t head = h5::read_int_attribute(g, "unreached_head"), tail = h5::read_int_attribute(g, "unreached_tail");
+      if (head < 0 || tail < head) throw std::runtime_error("/restart unreached_head and unreached_tail are not a range");
+      run.clock.unreached_head = static_cast<std::size_t>(head);
+      run.clock.unreached_tail = static_cast<std::size_t>(tail);
+    }
     run.schedule.snapshot_index = static_cast<int>(h5::read_int_attribute(g, "snapshot_index"));
     run.schedule.last_dt = h5::read_double_attribute(g, "last_dt");
     const std::vector<double> t = h5::read_doubles_attribute(g, "initial_totals");

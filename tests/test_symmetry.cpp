@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "compare_outputs.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/setup.hpp"
@@ -86,13 +87,7 @@ void solid_point_states_agree(const char* shape) {
     const Scene scene = parse_scene(text, "solid", {std::string("symmetry=") + symmetry});
     InitialState<2> initial = build_initial_state<2>(scene);
     Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
-    while (sim.time() < scene.end_time * (1 - 1e-12)) {
-      const StepStatus s = sim.step(std::min(sim.stable_time_step(), scene.end_time - sim.time()));
-      if (!s.ok()) {
-        check::fail(__FILE__, __LINE__, std::string(shape) + ": " + sim.describe(s));
-        return;
-      }
-    }
+    if (!compare::march(sim, scene.end_time, shape)) return;
     finals.push_back(sim.particles());
   }
   const Particles<2>& half = finals[0];
@@ -117,56 +112,6 @@ void solid_point_states_agree(const char* shape) {
   CHECK(dP < 1e-11 * P_max);
 }
 
-std::vector<std::vector<std::string>> csv(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> fields;
-    std::istringstream s(line);
-    for (std::string f; std::getline(s, f, ',');) fields.push_back(f);
-    rows.push_back(fields);
-  }
-  return rows;
-}
-
-// Every number of two CSV files alike to `rel` of its column's largest magnitude (or of `floor`, for
-// columns that are round-off about zero); text fields equal.
-void same_csv(const fs::path& a, const fs::path& b, double rel, double floor = 0.0) {
-  const auto x = csv(a), y = csv(b);
-  CHECK(x.size() == y.size() && !x.empty());
-  if (x.size() != y.size() || x.empty()) return;
-  CHECK(x[0] == y[0]);
-  const std::size_t columns = x[0].size();
-  std::vector<double> scale(columns, 0.0);
-  for (std::size_t r = 1; r < y.size(); ++r)
-    for (std::size_t c = 0; c < columns && c < y[r].size(); ++c) {
-      char* end = nullptr;
-      const double v = std::strtod(y[r][c].c_str(), &end);
-      if (*end == '\0' && std::isfinite(v)) scale[c] = std::max(scale[c], std::abs(v));
-    }
-  double worst = 0.0;
-  std::string where;
-  for (std::size_t r = 1; r < x.size(); ++r) {
-    CHECK(x[r].size() == columns && y[r].size() == columns);
-    for (std::size_t c = 0; c < columns && c < x[r].size() && c < y[r].size(); ++c) {
-      char *ea = nullptr, *eb = nullptr;
-      const double u = std::strtod(x[r][c].c_str(), &ea), v = std::strtod(y[r][c].c_str(), &eb);
-      if (*ea != '\0' || *eb != '\0') {
-        CHECK(x[r][c] == y[r][c]);
-        continue;
-      }
-      if (std::isnan(u) || std::isnan(v)) {
-        CHECK(std::isnan(u) && std::isnan(v));
-        continue;
-      }
-      const double d = std::abs(u - v) / std::max({scale[c], floor, 1e-300});
-      if (d > worst) worst = d, where = x[0][c] + " in row " + std::to_string(r) + " (" + x[r][1] + ")";
-    }
-  }
-  std::printf("%s: largest difference %.2e of the column's scale (%s)\n", a.filename().c_str(), worst, where.c_str());
-  CHECK(worst <= rel);
-}
-
 // A porous impact whose voids touch the plane, through every output, the target alone against the
 // whole; a band region across the plane and a probe in the flyer read the mirror image.
 void porous_outputs_agree(const std::string& porous) {
@@ -188,11 +133,11 @@ void porous_outputs_agree(const std::string& porous) {
   CHECK(on.mass_error == 0.0 && on.momentum_error < 1e-14 && on.energy_error < 1e-10);
   std::printf("energy error: %.2e on, %.2e off\n", on.energy_error, off.energy_error);
   // Round-off grows in a porous run (void collapse amplifies it), but stays far below any physics.
-  same_csv(root / "on" / "regions.csv", root / "off" / "regions.csv", 1e-9);
-  same_csv(root / "on" / "probes.csv", root / "off" / "probes.csv", 1e-9);
+  compare::same_csv(root / "on" / "regions.csv", root / "off" / "regions.csv", 1e-9);
+  compare::same_csv(root / "on" / "probes.csv", root / "off" / "probes.csv", 1e-9);
   // The momenta are round-off about 0 (1e-17 kg/s per metre of depth): against a floor of 1e-6, a
   // few 1e-9 of the bodies' momentum sum m |v| (270 kg/s per metre).
-  same_csv(root / "on" / "conservation.csv", root / "off" / "conservation.csv", 1e-9, 1e-6);
+  compare::same_csv(root / "on" / "conservation.csv", root / "off" / "conservation.csv", 1e-9, 1e-6);
   // The snapshots show the whole impact: the same points, ids and bodies as the whole run's.
   const Restart<2> a = read_snapshot<2>((root / "on" / "snapshot_00002.h5").string());
   const Restart<2> b = read_snapshot<2>((root / "off" / "snapshot_00002.h5").string());

@@ -121,7 +121,7 @@ struct StressUpdateResult {
 
 // The update of every point, for one choice of laws.
 template <int D, class Eos, class Strength, class Viscosity, class Failure>
-StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, double dt) {
+StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const Model& model, double dt) {
   const Eos& eos = std::get<Eos>(model.eos);
   const Strength& strength = std::get<Strength>(model.strength);
   const Viscosity& viscosity = std::get<Viscosity>(model.viscosity);
@@ -129,13 +129,14 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
   double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};
   const double speed_limit2 = model.speed_limit * model.speed_limit;
-  // Per-chunk sums of the mismatch: a chunk is always kChunk consecutive points run in order by one
-  // thread, so the total (summed over chunks in order) is the same for any thread count.
-  std::vector<double> mismatch((pts.size() + kChunk - 1) / kChunk, 0.0);
+  // Per-chunk sums of the mismatch: a chunk is always kChunk consecutive points from range.begin run
+  // in order by one thread, so the total (summed over chunks in order) is the same for any thread
+  // count, and no two threads add to one sum.
+  std::vector<double> mismatch((range.end - range.begin + kChunk - 1) / kChunk, 0.0);
   const bool stores = pts.stores_cold_work();       // taylor_quinney < 1
   const bool heats = pts.tracks_plastic_heat();     // temperature_model = paper
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(max : max_signal) reduction(min : first_bad)
-  for (std::size_t p = 0; p < pts.size(); ++p) {
+  for (std::size_t p = range.begin; p < range.end; ++p) {
     PointState<D> st{pts.L[p], pts.work[p], pts.F[p], pts.E[p], pts.P[p], pts.q[p], {}, {}, 0.0};
     if constexpr (Strength::has_stress) {
       st.s = pts.s[p];
@@ -169,7 +170,7 @@ StressUpdateResult update_all_points(Particles<D>& pts, const Model& model, doub
       if (stores) pts.E_stored[p] = st.E_stored;
       if (heats) pts.plastic_heat[p] = st.plastic_heat;
     }
-    mismatch[p / kChunk] += pts.m[p] * st.work_mismatch;
+    mismatch[(p - range.begin) / kChunk] += pts.m[p] * st.work_mismatch;
     const double speed2 = dot(pts.v[p], pts.v[p]);
     if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;
     max_signal = std::max(max_signal, std::sqrt(speed2) + signal);

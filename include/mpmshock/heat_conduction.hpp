@@ -43,8 +43,8 @@ struct HeatConduction {
 };
 
 template <int D, class Shape>
-void conduct_heat(Particles<D>& pts, const StripBins& bins, const Grid<D>& g, const HugoniotTemperature& thermal,
-                  HeatConduction& h, double dt) {
+void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
+                  const HugoniotTemperature& thermal, HeatConduction& h, double dt) {
   const GridGeometry<D>& geo = g.geo;
   const RowRange rows = bins.rows();
   const std::size_t first = geo.row_start(rows.begin), last = geo.row_start(rows.end);
@@ -77,7 +77,7 @@ void conduct_heat(Particles<D>& pts, const StripBins& bins, const Grid<D>& g, co
   // 4a. d_p = T_p - sum_i N_ip T_i, in place of T_p.
   std::vector<double>& d = pts.work;
 #pragma omp parallel for schedule(dynamic, kChunk)
-  for (std::size_t p = 0; p < pts.size(); ++p) {
+  for (std::size_t p = range.begin; p < range.end; ++p) {
     double T_grid = 0.0;
     for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
                   [&](std::size_t i, double N, const Vec<D>&) { T_grid += N * h.node_heat[i]; });
@@ -97,7 +97,7 @@ void conduct_heat(Particles<D>& pts, const StripBins& bins, const Grid<D>& g, co
   // 4c. The grid's heat, and the decay of the sub-cell part d_p - sum_i N_ip d_i.
   const double relax = 1.0 - std::exp(-dt / h.relaxation_time);
 #pragma omp parallel for schedule(dynamic, kChunk)
-  for (std::size_t p = 0; p < pts.size(); ++p) {
+  for (std::size_t p = range.begin; p < range.end; ++p) {
     double heat = 0.0, d_grid = 0.0;
     for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo, [&](std::size_t i, double N, const Vec<D>&) {
       if (N > 0.0) heat += N * h.node_rate[i] / g.m[i];  // N > 0: this point gave node i its mass

@@ -49,6 +49,7 @@ struct Model {
   double conductivity = 0.0;   // k with heat_conduction = on, else 0
   double diffusivity = 0.0;    // k / (rho0 c_v) [m2/s]
   bool symmetry_plane = false;  // symmetry = on: the target alone, mirrored about y = 0
+  bool skip_unreached = false;  // advance material nothing has reached in closed form (unreached.hpp)
 
   explicit Model(const Scene& s);
 

@@ -26,6 +26,11 @@ namespace mpmshock {
 
 enum class Body : std::uint8_t { flyer = 0, target = 1 };
 
+// The points [begin, end) by storage index: those a step computes (unreached.hpp).
+struct PointRange {
+  std::size_t begin = 0, end = 0;
+};
+
 template <int D>
 struct Particles {
   std::vector<Vec<D>> x, v;

@@ -91,6 +91,7 @@ struct Scene {
   double melt_temperature = 1220.0;       // [K] T_m0, the melt temperature at J = 1
   double lindemann_a = 1.5;               // volume exponent of the Lindemann melt curve
   double flip_fraction = 1.0;  // share of FLIP in the point velocity update; the rest is PIC
+  bool skip_unreached = true;  // advance material nothing has reached in closed form (unreached.hpp)
   double av_linear = 0.2;
   double av_quadratic = 2.0;
   std::int64_t seed = 1;

@@ -15,6 +15,7 @@
 #include "mpmshock/scene.hpp"
 #include "mpmshock/step_effect.hpp"
 #include "mpmshock/strip_bins.hpp"
+#include "mpmshock/unreached.hpp"
 
 namespace mpmshock {
 
@@ -22,14 +23,15 @@ namespace mpmshock {
 // instantiated for the model's choices at set-up (simulation.cpp).
 template <int D>
 struct Kernels {
-  bool (*bin)(StripBins&, const Particles<D>&, const GridGeometry<D>&);
+  bool (*bin)(StripBins&, const Particles<D>&, PointRange, const GridGeometry<D>&);
   void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&);
-  void (*velocity_to_points)(Particles<D>&, const StripBins&, Grid<D>&, double dt, double flip_fraction);
-  std::size_t (*gradient_work_and_move)(Particles<D>&, const Grid<D>&, const std::vector<Vec<D>>& u, double dt);
-  StressUpdateResult (*update_points)(Particles<D>&, const Model&, double dt);
+  void (*velocity_to_points)(Particles<D>&, PointRange, const StripBins&, Grid<D>&, double dt, double flip_fraction);
+  std::size_t (*gradient_work_and_move)(Particles<D>&, PointRange, const Grid<D>&, const std::vector<Vec<D>>& u,
+                                        double dt);
+  StressUpdateResult (*update_points)(Particles<D>&, PointRange, const Model&, double dt);
   // Heat conduction, or null when the scene has none.
-  void (*conduct)(Particles<D>&, const StripBins&, const Grid<D>&, const HugoniotTemperature&, HeatConduction&,
-                  double dt);
+  void (*conduct)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const HugoniotTemperature&,
+                  HeatConduction&, double dt);
 };
 
 // Where the integrator stands: all it needs, besides the points, to take the next step.
@@ -40,6 +42,10 @@ struct Clock {
   // Running sum over steps and points of m (work - own trapezoid work): the internal energy the
   // points hold beyond what their own deformation did on them [J] (constitutive.hpp).
   double work_mismatch = 0.0;
+  // The points not reached yet: [0, unreached_head) and [unreached_tail, n) (unreached.hpp);
+  // kNoneSaved in unreached_tail: not known (a snapshot of an older mpmshock), all computed.
+  static constexpr std::size_t kNoneSaved = ~std::size_t{0};
+  std::size_t unreached_head = 0, unreached_tail = kNoneSaved;
 };
 
 template <int D>
@@ -69,11 +75,14 @@ class Simulation {
   const Model& model() const { return model_; }
   // Node rows the last step used; the grid's fields outside them are stale.
   RowRange active_rows() const { return bins_.rows(); }
+  // The points the steps compute; the others nothing has reached yet (unreached.hpp).
+  PointRange computed_points() const { return unreached_.computed(); }
 
   // A readable account of a failed step or check: the point, its position and its state.
   std::string describe(const StepStatus& status) const;
 
  private:
+  void remember_unreached();  // the unreached boundaries into the clock, for snapshots
   Model model_;
   Particles<D> points_;
   Grid<D> grid_;
@@ -81,6 +90,7 @@ class Simulation {
   Kernels<D> kernels_;
   HeatConduction heat_;
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;
+  UnreachedMaterial<D> unreached_;
   Clock clock_;
 };
 

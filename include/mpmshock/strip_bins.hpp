@@ -10,6 +10,7 @@
 
 #include "mpmshock/grid.hpp"
 #include "mpmshock/parallel.hpp"
+#include "mpmshock/particles.hpp"
 
 namespace mpmshock {
 
@@ -19,10 +20,10 @@ class StripBins {
   // Memory per point (order_ and strip_of_), for the --check estimate.
   static constexpr std::size_t kBytesPerPoint = sizeof(std::uint32_t) + sizeof(int);
 
-  // Groups points by strip (a stable counting sort of their indices). Returns false if a point
-  // lies outside the rows [0, ny - support], which the caller reports; the bins are then invalid.
+  // Groups the points of `range` by strip (a stable counting sort of their indices). Returns false
+  // if one lies outside the rows [0, ny - support], which the caller reports; the bins are then invalid.
   template <class Shape, int D>
-  bool build(const std::vector<Vec<D>>& x, const GridGeometry<D>& g);
+  bool build(const std::vector<Vec<D>>& x, PointRange range, const GridGeometry<D>& g);
 
   // Node rows the points touch.
   RowRange rows() const { return rows_; }
@@ -47,19 +48,19 @@ class StripBins {
 };
 
 template <class Shape, int D>
-bool StripBins::build(const std::vector<Vec<D>>& x, const GridGeometry<D>& g) {
+bool StripBins::build(const std::vector<Vec<D>>& x, PointRange range, const GridGeometry<D>& g) {
   static_assert(kRowsPerStrip >= Shape::support - 1, "strips too thin for this shape function");
-  const std::size_t n = x.size();
+  const std::size_t n = x.size(), first = range.begin, end = range.end;
   const int last_row = g.ny - Shape::support;  // highest first row that stays on the grid
   strips_ = (g.ny - 1) / kRowsPerStrip + 1;
   start_.assign(static_cast<std::size_t>(strips_) + 1, 0);
   strip_of_.resize(n);
-  order_.resize(n);
+  order_.resize(end - first);
 
   int lo = last_row, hi = 0;
   bool inside = true;
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(min : lo) reduction(max : hi) reduction(&& : inside)
-  for (std::size_t p = 0; p < n; ++p) {
+  for (std::size_t p = first; p < end; ++p) {
     const int row = Shape::first_row(x[p][1], g);
     inside = inside && row >= 0 && row <= last_row;
     const int r = row < 0 ? 0 : (row > last_row ? last_row : row);
@@ -68,11 +69,12 @@ bool StripBins::build(const std::vector<Vec<D>>& x, const GridGeometry<D>& g) {
     strip_of_[p] = r / kRowsPerStrip;
   }
   if (!inside) return false;
-  for (std::size_t p = 0; p < n; ++p) ++start_[static_cast<std::size_t>(strip_of_[p]) + 1];
+  for (std::size_t p = first; p < end; ++p) ++start_[static_cast<std::size_t>(strip_of_[p]) + 1];
   for (int k = 0; k < strips_; ++k) start_[k + 1] += start_[k];
   std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
-  for (std::size_t p = 0; p < n; ++p) order_[next[static_cast<std::size_t>(strip_of_[p])]++] = static_cast<std::uint32_t>(p);
-  rows_ = n ? RowRange{lo, hi + Shape::support} : RowRange{};
+  for (std::size_t p = first; p < end; ++p)
+    order_[next[static_cast<std::size_t>(strip_of_[p])]++] = static_cast<std::uint32_t>(p);
+  rows_ = end > first ? RowRange{lo, hi + Shape::support} : RowRange{};
   return true;
 }
 

@@ -78,7 +78,7 @@ void remap_grid_velocity(Grid<D>& g, RowRange rows);
 // of velocity_gradient_work_and_move assumes are FLIP's). With Remap (MUSL), also scatters
 // m_p v_p^{n+1} back to the nodes at the same stencil.
 template <int D, class Shape, bool Remap, bool Blend>
-void grid_to_particles_velocity(Particles<D>& pts, const StripBins& bins, Grid<D>& g, double dt,
+void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const StripBins& bins, Grid<D>& g, double dt,
                                 [[maybe_unused]] double flip_fraction) {
   const GridGeometry<D>& geo = g.geo;
   auto kernel = [&](std::size_t p) {
@@ -115,7 +115,7 @@ void grid_to_particles_velocity(Particles<D>& pts, const StripBins& bins, Grid<D
     bins.scatter(kernel);
   } else {
 #pragma omp parallel for schedule(dynamic, kChunk)
-    for (std::size_t p = 0; p < pts.size(); ++p) kernel(p);
+    for (std::size_t p = range.begin; p < range.end; ++p) kernel(p);
   }
 }
 
@@ -134,15 +134,15 @@ void grid_to_particles_velocity(Particles<D>& pts, const StripBins& bins, Grid<D
 // sqrt(1 + (omega dt)^2 / 2)); hence the two gradients.
 //
 // Positions move with v^{n+1}; periodic coordinates wrap into [0, period). Returns the lowest
-// index of a point that left the grid, or kNoPoint.
+// index of a point that left the grid, or kNoPoint. Only the points of `range`.
 template <int D, class Shape, bool Strength>
-std::size_t velocity_gradient_work_and_move(Particles<D>& pts, const Grid<D>& g, const std::vector<Vec<D>>& u,
-                                            double dt) {
+std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range, const Grid<D>& g,
+                                            const std::vector<Vec<D>>& u, double dt) {
   const GridGeometry<D>& geo = g.geo;
   const int last_row = geo.ny - Shape::support;
   std::size_t first_out = kNoPoint;
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(min : first_out)
-  for (std::size_t p = 0; p < pts.size(); ++p) {
+  for (std::size_t p = range.begin; p < range.end; ++p) {
     const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
     Mat<D> L{};  // L[u]
     Mat<D> A{};  // L[v^n + u], twice the averaged gradient

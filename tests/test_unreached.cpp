@@ -1,0 +1,126 @@
+// skip_unreached = on (material nothing has reached advanced in closed form, x += v0 dt) against
+// the full computation: the same point states in a solid impact with each shape function, flyer
+// and target both skipped; the same regions, probes, conservation and snapshots in a porous run;
+// and the skipped material exactly in its initial state.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "check.hpp"
+#include "compare_outputs.hpp"
+#include "mpmshock/run.hpp"
+#include "mpmshock/scene.hpp"
+#include "mpmshock/setup.hpp"
+#include "mpmshock/simulation.hpp"
+#include "mpmshock/snapshot.hpp"
+
+using namespace mpmshock;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A solid impact of the whole domain (both bodies have unreached material), skipped against computed.
+void solid_point_states_agree(const char* shape) {
+  const std::string text = std::string("velocity = 1000 m/s\nporosity = 1\nwidth = 40 um\ntarget_height = 1.6 mm\n"
+                                       "flyer_height = 1.6 mm\ncell_size = 10 um\nend_time = 100 ns\n"
+                                       "symmetry = off\nshape_function = ") + shape + "\n";
+  std::vector<Particles<2>> finals;
+  double skipped_share = 0.0;
+  for (const char* skip : {"on", "off"}) {
+    const Scene scene = parse_scene(text, "solid", {std::string("skip_unreached=") + skip});
+    InitialState<2> initial = build_initial_state<2>(scene);
+    Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
+    const std::size_t n = sim.particles().size();
+    double skipped = 0.0, all = 0.0;
+    while (sim.time() < scene.end_time * (1 - 1e-12)) {
+      const PointRange computed = sim.computed_points();
+      skipped += static_cast<double>(n - (computed.end - computed.begin));
+      all += static_cast<double>(n);
+      if (!compare::march(sim, std::min(scene.end_time, sim.time() + sim.stable_time_step()), shape)) return;
+    }
+    if (std::string(skip) == "on") {
+      skipped_share = skipped / all;
+      // What is still unreached is exactly in its initial state, at its initial position moved by v0 t.
+      const PointRange computed = sim.computed_points();
+      const Particles<2>& p = sim.particles();
+      const Particles<2> start = build_initial_state<2>(scene).particles;
+      std::size_t unreached = 0, moved = 0;
+      double drift = 0.0;
+      for (std::size_t q = 0; q < n; ++q) {
+        if (q >= computed.begin && q < computed.end) continue;
+        ++unreached;
+        const double v0 = p.body[q] == Body::flyer ? scene.velocity : -scene.velocity;
+        const Mat<2>& F = p.F[q];
+        const bool identity = F(0, 0) == 1.0 && F(1, 1) == 1.0 && F(0, 1) == 0.0 && F(1, 0) == 0.0;
+        moved += !(identity && p.v[q][0] == 0.0 && p.v[q][1] == v0 && p.E[q] == 0.0 && p.P[q] == 0.0 &&
+                   p.x[q][0] == start.x[q][0]);
+        drift = std::max(drift, std::abs(p.x[q][1] - (start.x[q][1] + v0 * sim.time())));
+      }
+      std::printf("%-8s %zu of %zu points unreached at 100 ns, %.1f %% of the point-steps skipped, position "
+                  "error %.1e m\n", shape, unreached, n, 100.0 * skipped_share, drift);
+      CHECK(unreached > n / 5);
+      CHECK(moved == 0);
+      CHECK(drift < 1e-15);
+    } else {
+      CHECK(skipped == 0.0);
+    }
+    finals.push_back(sim.particles());
+  }
+  CHECK(skipped_share > 0.3);
+  const Particles<2>& a = finals[0];
+  const Particles<2>& b = finals[1];
+  CHECK(a.size() == b.size());
+  double dx = 0.0, dv = 0.0, dP = 0.0, P_max = 0.0;
+  for (std::size_t q = 0; q < a.size() && q < b.size(); ++q) {
+    for (int d = 0; d < 2; ++d) {
+      dx = std::max(dx, std::abs(a.x[q][d] - b.x[q][d]));
+      dv = std::max(dv, std::abs(a.v[q][d] - b.v[q][d]));
+    }
+    dP = std::max(dP, std::abs(a.P[q] - b.P[q]));
+    P_max = std::max(P_max, std::abs(b.P[q]));
+  }
+  std::printf("%-8s solid, 100 ns: largest difference x %.2e m, v %.2e m/s, P %.2e of the peak pressure\n", shape,
+              dx, dv, dP / P_max);
+  // Round-off: the full computation moves unreached material by sum N m v0 / sum N m, not v0.
+  CHECK(dx < 1e-12);
+  CHECK(dv < 1e-8);
+  CHECK(dP < 1e-11 * P_max);
+}
+
+// A porous run through every output, skipped against computed.
+void porous_outputs_agree(const std::string& porous) {
+  const fs::path root = fs::temp_directory_path() / ("mpmshock_test_unreached_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  for (const char* skip : {"on", "off"}) {
+    const Scene scene = load_scene(porous, {std::string("skip_unreached=") + skip, "output_dir=" + (root / skip).string(),
+                                            "region.T100 = top 100 um", "region.B100 = bottom 0 m 100 um",
+                                            "probe.top = surface", "probe.inside = point 101 um 151 um"});
+    const RunResult r = run_scene(scene, {true, false});
+    CHECK(r.exit_code == kExitOk && r.energy_error < 1e-10);
+  }
+  compare::same_csv(root / "on" / "regions.csv", root / "off" / "regions.csv", 1e-9);
+  compare::same_csv(root / "on" / "probes.csv", root / "off" / "probes.csv", 1e-9);
+  compare::same_csv(root / "on" / "conservation.csv", root / "off" / "conservation.csv", 1e-9, 1e-6);
+  const Restart<2> a = read_snapshot<2>((root / "on" / "snapshot_00002.h5").string());
+  const Restart<2> b = read_snapshot<2>((root / "off" / "snapshot_00002.h5").string());
+  CHECK(a.points.size() == b.points.size());
+  double dx = 0.0;
+  for (std::size_t p = 0; p < a.points.size() && p < b.points.size(); ++p)
+    for (int d = 0; d < 2; ++d) dx = std::max(dx, std::abs(a.points.x[p][d] - b.points.x[p][d]));
+  std::printf("final snapshot: largest position difference %.2e m\n", dx);
+  CHECK(dx < 1e-10);
+  fs::remove_all(root);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return 2;
+  for (const char* shape : {"bspline2", "gimp", "bilinear"}) solid_point_states_agree(shape);
+  porous_outputs_agree(argv[1]);
+  return check::result();
+}
