@@ -92,24 +92,9 @@ void solid_point_states_agree(const char* shape) {
   }
   const Particles<2>& half = finals[0];
   const Particles<2>& whole = finals[1];
-  const std::size_t flyer = whole.size() - half.size();
   CHECK(2 * half.size() == whole.size());
-  double dx = 0.0, dv = 0.0, dP = 0.0, P_max = 0.0;
-  for (std::size_t k = 0; k < half.size(); ++k) {
-    const std::size_t q = flyer + k;
-    for (int d = 0; d < 2; ++d) {
-      dx = std::max(dx, std::abs(half.x[k][d] - whole.x[q][d]));
-      dv = std::max(dv, std::abs(half.v[k][d] - whole.v[q][d]));
-    }
-    dP = std::max(dP, std::abs(half.P[k] - whole.P[q]));
-    P_max = std::max(P_max, std::abs(whole.P[q]));
-  }
-  std::printf("%-8s solid, 150 ns: largest difference x %.2e m, v %.2e m/s, P %.2e of the peak pressure\n", shape, dx,
-              dv, dP / P_max);
   // Round-off only: the two runs sum the same contributions in another order.
-  CHECK(dx < 1e-12);
-  CHECK(dv < 1e-8);
-  CHECK(dP < 1e-11 * P_max);
+  compare::same_point_states(half, whole, whole.size() - half.size(), std::string(shape) + " solid, 150 ns");
 }
 
 // A porous impact whose voids touch the plane, through every output, the target alone against the
@@ -132,27 +117,8 @@ void porous_outputs_agree(const std::string& porous) {
   CHECK(2 * on.points == off.points);
   CHECK(on.mass_error == 0.0 && on.momentum_error < 1e-14 && on.energy_error < 1e-10);
   std::printf("energy error: %.2e on, %.2e off\n", on.energy_error, off.energy_error);
-  // Round-off grows in a porous run (void collapse amplifies it), but stays far below any physics.
-  compare::same_csv(root / "on" / "regions.csv", root / "off" / "regions.csv", 1e-9);
-  compare::same_csv(root / "on" / "probes.csv", root / "off" / "probes.csv", 1e-9);
-  // The momenta are round-off about 0 (1e-17 kg/s per metre of depth): against a floor of 1e-6, a
-  // few 1e-9 of the bodies' momentum sum m |v| (270 kg/s per metre).
-  compare::same_csv(root / "on" / "conservation.csv", root / "off" / "conservation.csv", 1e-9, 1e-6);
   // The snapshots show the whole impact: the same points, ids and bodies as the whole run's.
-  const Restart<2> a = read_snapshot<2>((root / "on" / "snapshot_00002.h5").string());
-  const Restart<2> b = read_snapshot<2>((root / "off" / "snapshot_00002.h5").string());
-  CHECK(a.points.size() == b.points.size());
-  if (a.points.size() == b.points.size()) {
-    double dx = 0.0;
-    bool same_ids = true;
-    for (std::size_t p = 0; p < a.points.size(); ++p) {
-      same_ids = same_ids && a.points.id[p] == b.points.id[p] && a.points.body[p] == b.points.body[p];
-      for (int d = 0; d < 2; ++d) dx = std::max(dx, std::abs(a.points.x[p][d] - b.points.x[p][d]));
-    }
-    CHECK(same_ids);
-    std::printf("final snapshot: largest position difference %.2e m\n", dx);
-    CHECK(dx < 1e-10);
-  }
+  compare::same_run_outputs(root / "on", root / "off");
   fs::remove_all(root);
 }
 
