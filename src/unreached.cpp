@@ -95,11 +95,12 @@ void UnreachedMaterial<D>::advance(Particles<D>& pts, double dt) const {
   if (!on_) return;
   const double flyer_step = flyer_velocity_ * dt, target_step = target_velocity_ * dt;
   const auto head = static_cast<std::ptrdiff_t>(head_), tail = static_cast<std::ptrdiff_t>(tail_);
-  const auto n = static_cast<std::ptrdiff_t>(points_);
+  const auto count = head + static_cast<std::ptrdiff_t>(points_) - tail;  // [0, head) then [tail, n)
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t p = 0; p < head; ++p) pts.x[p][1] += flyer_step;
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t p = tail; p < n; ++p) pts.x[p][1] += target_step;
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    if (k < head) pts.x[k][1] += flyer_step;
+    else pts.x[tail + (k - head)][1] += target_step;
+  }
 }
 
 template <int D>

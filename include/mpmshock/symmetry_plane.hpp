@@ -27,6 +27,7 @@ class SymmetryPlane final : public StepEffect<D> {
   explicit SymmetryPlane(const GridGeometry<D>& g) : plane_row_(static_cast<int>(std::lround(-g.y_min * g.inv_h))) {}
   const char* name() const override { return "symmetry plane"; }
 
+  // Each ghost node is the only one folded onto its mirror node, so one pass folds it and sets it.
   void after_to_grid(Grid<D>& g, RowRange rows) override {
     fold(g, rows, [&g](std::size_t ghost, std::size_t image, bool on_plane) {
       if (on_plane) {  // its own mirror image: twice the share, no normal component
@@ -35,25 +36,16 @@ class SymmetryPlane final : public StepEffect<D> {
         twice_tangential(g.f[image]);
         return;
       }
-      g.m[image] += g.m[ghost];
-      add_reflected(g.mv[image], g.mv[ghost]);
-      add_reflected(g.f[image], g.f[ghost]);
-    });
-    fold(g, rows, [&g](std::size_t ghost, std::size_t image, bool on_plane) {
-      if (on_plane) return;
-      g.m[ghost] = g.m[image];
-      g.mv[ghost] = reflected(g.mv[image]);
-      g.f[ghost] = reflected(g.f[image]);
+      g.m[ghost] = g.m[image] += g.m[ghost];
+      g.mv[ghost] = reflected(add_reflected(g.mv[image], g.mv[ghost]));
+      g.f[ghost] = reflected(add_reflected(g.f[image], g.f[ghost]));
     });
   }
 
   void before_remap(Grid<D>& g, RowRange rows) override {
     fold(g, rows, [&g](std::size_t ghost, std::size_t image, bool on_plane) {
       if (on_plane) twice_tangential(g.mv[image]);
-      else add_reflected(g.mv[image], g.mv[ghost]);
-    });
-    fold(g, rows, [&g](std::size_t ghost, std::size_t image, bool on_plane) {
-      if (!on_plane) g.mv[ghost] = reflected(g.mv[image]);
+      else g.mv[ghost] = reflected(add_reflected(g.mv[image], g.mv[ghost]));
     });
   }
 
@@ -64,8 +56,9 @@ class SymmetryPlane final : public StepEffect<D> {
     u[1] = -u[1];
     return u;
   }
-  static void add_reflected(Vec<D>& to, const Vec<D>& u) {
+  static const Vec<D>& add_reflected(Vec<D>& to, const Vec<D>& u) {
     for (int d = 0; d < D; ++d) to[d] += d == 1 ? -u[d] : u[d];
+    return to;
   }
   static void twice_tangential(Vec<D>& u) {
     for (int d = 0; d < D; ++d) u[d] = d == 1 ? 0.0 : 2.0 * u[d];
