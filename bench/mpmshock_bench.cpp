@@ -284,24 +284,18 @@ double triad_bandwidth(int repeats) {
   return best;
 }
 
-// The share of point-steps of a run of `scene` spent on points that nothing has reached yet: their
-// deformation gradient still the identity and their velocity still the initial one (to round-off).
+// The share of point-steps of a run of `scene` (every point computed) spent on points that nothing
+// has reached yet: still in their initial state by UnreachedMaterial's test (to round-off).
 double unreached_share(const Scene& scene) {
   InitialState<2> initial = build_initial_state<2>(scene);
   Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
-  const std::vector<Vec<2>> v0 = sim.particles().v;
+  const UnreachedMaterial<2> test(scene, sim.model(), sim.particles());
   double unreached = 0.0, total = 0.0;
   while (sim.time() < scene.end_time * (1 - 1e-12)) {
     sim.step(std::min(sim.stable_time_step(), scene.end_time - sim.time()));
     const Particles<2>& p = sim.particles();
     std::size_t n = 0;
-    for (std::size_t q = 0; q < p.size(); ++q) {
-      const Mat<2>& F = p.F[q];
-      const bool still = std::abs(F(0, 0) - 1) < 1e-12 && std::abs(F(1, 1) - 1) < 1e-12 &&
-                         std::abs(F(0, 1)) < 1e-12 && std::abs(F(1, 0)) < 1e-12 &&
-                         std::abs(p.v[q][1] - v0[q][1]) < 1e-9 && std::abs(p.v[q][0] - v0[q][0]) < 1e-9;
-      n += still ? 1 : 0;
-    }
+    for (std::size_t q = 0; q < p.size(); ++q) n += test.reached(p, q) ? 0 : 1;
     unreached += static_cast<double>(n);
     total += static_cast<double>(p.size());
   }

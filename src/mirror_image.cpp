@@ -47,8 +47,7 @@ MirrorImage<D>::MirrorImage(const Particles<D>& whole) : on_(true) {
   auto fail = [](const std::string& why) {
     throw std::logic_error("symmetry = on: the flyer is not the target's mirror image: " + why);
   };
-  std::size_t flyer = 0;
-  while (flyer < whole.size() && whole.body[flyer] == Body::flyer) ++flyer;
+  const std::size_t flyer = mpmshock::flyer_points(whole);
   const std::size_t target = whole.size() - flyer;
   if (flyer != target)
     fail(std::to_string(flyer) + " flyer points against " + std::to_string(target) + " target points");

@@ -17,7 +17,9 @@ Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append, Mirror
     : scene_(scene), dir_(dir), mirror_(std::move(mirror)),
       regions_(open_output(dir / "regions.csv", append ? "a" : "w")),
       conservation_(open_output(dir / "conservation.csv", append ? "a" : "w")), xdmf_(xdmf_path()) {
-  for (const RegionSpec& r : scene.regions) regions_need_whole_ |= mirror_.on() && r.kind == RegionSpec::Kind::band;
+  // A band that reaches within a cell of the plane counts flyer points (their extents reach across).
+  for (const RegionSpec& r : scene.regions)
+    regions_need_whole_ |= mirror_.on() && r.kind == RegionSpec::Kind::band && r.a < scene.cell_size;
   if (!append) {
     std::fprintf(regions_.get(), "%s\n", kRegionsHeader);
     std::fprintf(conservation_.get(), "%s\n", conservation_header(D).c_str());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -197,7 +198,8 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
     lock = prepare_output_dir(scene, options.force);
   } else {
     lock = DirectoryLock(dir, snapshot + ": ");
-    check_same_run(snapshot, parse_scene(r.run.scene_text, snapshot + " (scene)"), dir);
+    check_same_run(snapshot, parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, {})),
+                   dir);
     check_csv_header(dir / "regions.csv", kRegionsHeader, snapshot);
     check_csv_header(dir / "conservation.csv", conservation_header(D), snapshot);
     check_csv_header(dir / "probes.csv", kProbesHeader, snapshot);
@@ -234,22 +236,25 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   write_text(dir / "scene.txt", r.run.scene_text);
   if (!fs::exists(dir / "voids.csv")) write_voids(dir / "voids.csv", r.run.flyer, r.run.target);
 
-  // Probes and the mirror image come from the initial state, as the run made them. A snapshot holds
-  // the whole impact; with symmetry = on the target's points go on.
-  const bool from_initial = !scene.probes.empty() || scene.symmetry == Symmetry::on;
-  const InitialState<D> initial = from_initial ? build_initial_state<D>(scene) : InitialState<D>{};
-  const MirrorImage<D>& mirror = initial.mirror;
-  Particles<D> points = mirror.on() ? mirror.half(r.points) : std::move(r.points);
-  const Clock& clock = r.run.clock;
-  if (scene.skip_unreached && clock.unreached_tail != Clock::kNoneSaved) try {  // as Simulation will read it
-      UnreachedMaterial<D>(scene, Model(scene), points, clock.unreached_head, clock.unreached_tail);
-    } catch (const SceneError& e) {
-      throw SceneError("snapshot " + snapshot + ": " + e.what());
-    }
-  Simulation<D> sim(scene, grid, std::move(points), clock);
-  Outputs<D> out(scene, dir, append, mirror);
-  if (!scene.probes.empty())
-    out.follow(probes_of(scene, initial), sim.time(), append && fs::exists(dir / "probes.csv"));
+  // Probes and the mirror image come from the initial state, as the run made them (and only they
+  // are kept of it). A snapshot holds the whole impact; with symmetry = on the target's points go on.
+  MirrorImage<D> mirror;
+  Probes<D> probes;
+  if (!scene.probes.empty() || scene.symmetry == Symmetry::on) {
+    const InitialState<D> initial = build_initial_state<D>(scene);
+    probes = probes_of(scene, initial);
+    mirror = initial.mirror;
+  }
+  if (mirror.on()) r.points = mirror.half(r.points);
+  std::optional<Simulation<D>> simulation;
+  try {  // the saved unreached material is checked against the points
+    simulation.emplace(scene, grid, std::move(r.points), r.run.clock);
+  } catch (const SceneError& e) {
+    throw SceneError("snapshot " + snapshot + ": " + e.what());
+  }
+  Simulation<D>& sim = *simulation;
+  Outputs<D> out(scene, dir, append, std::move(mirror));
+  if (!probes.empty()) out.follow(std::move(probes), sim.time(), append && fs::exists(dir / "probes.csv"));
   out.keep_listing(std::move(earlier));
   // Resume the output schedule from the snapshot's time, by the rule the loop itself uses.
   resume_schedule(r.run.schedule, scene, t0, 1e-9 * r.run.schedule.last_dt);

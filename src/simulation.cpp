@@ -147,6 +147,8 @@ std::string Simulation<D>::describe(const StepStatus& status) const {
   std::ostringstream out;
   const Particles<D>& pts = points_;
   const std::size_t p = status.point;
+  // The id the outputs give the point: with symmetry = on the mirrored flyer's come first.
+  auto id = [&](std::size_t q) { return pts.id[q] + (model_.symmetry_plane ? pts.size() : 0); };
   out << "step " << clock_.steps << ", t = " << clock_.time << " s: ";
   if (p >= pts.size()) {
     out << "a material point is outside the grid";
@@ -155,18 +157,18 @@ std::string Simulation<D>::describe(const StepStatus& status) const {
   const double J = pts.J(p);
   switch (status.code) {
     case StepStatus::Code::left_grid:
-      out << "material point " << pts.id[p] << " left the grid (y range " << grid_.geo.y_min << " .. "
+      out << "material point " << id(p) << " left the grid (y range " << grid_.geo.y_min << " .. "
           << grid_.geo.y_max() << " m); enlarge grid_margin";
       break;
     case StepStatus::Code::bad_state:
-      out << "material point " << pts.id[p] << " reached a non-physical state";
+      out << "material point " << id(p) << " reached a non-physical state";
       if (!(J > 0.0)) out << " (J = det F <= 0: the point turned inside out)";
       else if (!(J > model_.limiting_compression())) out << " (compressed past the Hugoniot's limit J = 1 - 1/s)";
       else if (!std::isfinite(pts.P[p]) || !std::isfinite(pts.E[p])) out << " (non-finite pressure or energy)";
       else out << " (runaway speed above " << model_.speed_limit << " m/s)";
       break;
     case StepStatus::Code::below_zero_kelvin:
-      out << "material point " << pts.id[p] << " reached a non-physical state (temperature "
+      out << "material point " << id(p) << " reached a non-physical state (temperature "
           << model_.thermal->temperature(pts.material_J(p), pts.thermal_energy(p)) << " K: its internal energy " << pts.E[p]
           << " J/kg is below the 0 K isotherm at J = " << J << "); at ";
       print_vector(out, pts.x[p]);

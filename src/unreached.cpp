@@ -9,22 +9,12 @@
 #include "mpmshock/parallel.hpp"
 
 namespace mpmshock {
-namespace {
-
-template <int D>
-std::size_t flyer_points(const Particles<D>& pts) {
-  std::size_t n = 0;
-  while (n < pts.size() && pts.body[n] == Body::flyer) ++n;
-  return n;
-}
-
-}  // namespace
-
 template <int D>
 UnreachedMaterial<D>::UnreachedMaterial(const Scene& scene, const Model& model, const Particles<D>& pts)
     : on_(true), points_(pts.size()), flyer_(flyer_points(pts)), flyer_velocity_(scene.velocity),
       target_velocity_(-scene.velocity), margin_(kMarginCells * scene.cell_size),
-      speed_tolerance_(1e-9 * std::max(scene.velocity, 1.0)) {
+      speed_tolerance_(1e-9 * std::max(scene.velocity, 1.0)),
+      energy_tolerance_(1e-12 * 0.5 * std::max(scene.velocity, 1.0) * std::max(scene.velocity, 1.0)) {
   // The points of 2 margins of lattice rows: the band next to a boundary that follow() examines.
   const double a = scene.particle_spacing();
   band_ = static_cast<std::size_t>(2.0 * std::ceil(margin_ / a) * std::pow(std::round(scene.width / a), D - 1));
@@ -79,6 +69,7 @@ void UnreachedMaterial<D>::measure_signal(const Model& model, const Particles<D>
 
 template <int D>
 bool UnreachedMaterial<D>::reached(const Particles<D>& pts, std::size_t p) const {
+  if (!(std::abs(pts.E[p]) <= energy_tolerance_)) return true;  // a state set by hand (NaN too), or heat conducted
   const Vec<D>& v = pts.v[p];
   const double v0 = pts.body[p] == Body::flyer ? flyer_velocity_ : target_velocity_;
   for (int d = 0; d < D; ++d)

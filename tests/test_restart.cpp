@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
                     "'symmetry'", "cannot change on restart");
   CHECK_THROWS_WITH(restart_run((root / "on_whole1" / "snapshot_00002.h5").string(), {}, {true, false}), "'end_time'",
                     "later end_time");
-  CHECK_THROWS_WITH(read_snapshot<2>((root / "whole1" / "regions.csv").string()), "regions.csv");
+  CHECK_THROWS_WITH(read_snapshot<2>((root / "on_whole1" / "regions.csv").string()), "regions.csv");
   fs::remove_all(root);
   return check::result();
 }

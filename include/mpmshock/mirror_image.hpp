@@ -5,8 +5,8 @@
 // components of F, L, s and alpha negated, and the ids a whole-domain run gives them.
 //
 //   snapshots   the whole set of points, as a whole-domain run writes them (same layout and ids)
-//   regions     the target's regions from the simulated points; a band reaching below y = 0 from
-//               the whole set
+//   regions     the target's regions from the simulated points; a band reaching within a cell of
+//               y = 0 from the whole set (built at each sample)
 //   conservation  whole-domain totals: twice the target's mass, x momentum and energies, y momentum 0
 //   probes      a flyer point is read as the mirror of its target point
 #pragma once

@@ -98,6 +98,14 @@ struct Particles {
   bool strength_ = false, back_stress_ = false, failure_ = false, stored_ = false, plastic_heat_ = false;
 };
 
+// The number of flyer points, which set-up stores before the target's.
+template <int D>
+std::size_t flyer_points(const Particles<D>& p) {
+  std::size_t n = 0;
+  while (n < p.size() && p.body[n] == Body::flyer) ++n;
+  return n;
+}
+
 extern template struct Particles<2>;
 extern template struct Particles<3>;
 

@@ -9,8 +9,8 @@
 // then set to the mirror of the rows above. The momentum update keeps that symmetry exactly (v_y = 0
 // on the plane: no normal velocity; the tangential velocity is free: no shear traction), and every
 // point reads the same nodal values the whole-domain run would give it. The MUSL re-map scatter
-// is folded the same way. A point never crosses the plane: the nodal v_y is odd in y, so a point's
-// v_y vanishes as its y does.
+// is folded the same way. A point never crosses the plane: the nodal v_y is odd in y, so the
+// velocity interpolated at a point vanishes as its y does.
 #pragma once
 
 #include <cmath>

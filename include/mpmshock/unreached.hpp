@@ -7,13 +7,14 @@
 // the unreached material is the flyer's first points [0, head) and the target's last [tail, n); the
 // step computes [head, tail). After each step the boundaries move past every point within
 // kMarginCells cells of the highest (in the flyer: lowest) point that has been reached: moved off
-// v0 by more than 1e-9 of the impact speed, or F off I by more than 1e-12. Beyond the margin the
-// whole-domain computation moves the material rigidly too, up to round-off (it sums N m v0 over
-// N m, and turns that round-off into strains of 1e-18; here the translation is exact): in one step
-// a disturbance spreads over at most four stencil radii (P2G, G2P, the re-map P2G and the gradient
-// G2P), 8 cells for the widest stencil (GIMP, 2 cells), plus the step's motion (under a cell), so
-// no point the disturbance can reach within a step, and no node such a point reads, lacks the
-// share of a skipped point. Only the points within 2 margins of a boundary are examined.
+// v0 by more than 1e-9 of the impact speed, F off I by more than 1e-12, or E off 0 by more than
+// 1e-12 of v0^2/2. Beyond the margin the whole-domain computation moves the material rigidly too,
+// up to round-off (it sums N m v0 over N m, and turns that round-off into strains of 1e-18; here
+// the translation is exact): in one step a disturbance spreads over at most four stencil radii
+// (P2G, G2P, the re-map P2G and the gradient G2P; a radius is 1.5 cells for bspline2 and gimp, 1
+// for bilinear), 6 cells, plus the step's motion (under a cell), so no point the disturbance can
+// reach within a step, and no node such a point reads, lacks the share of a skipped point; the
+// margin is twice that. Only the points within 2 margins of a boundary are examined.
 // Material once computed stays computed. Before the impact (t = 0) the reached points are those at
 // the impact plane y = 0.
 #pragma once
@@ -66,7 +67,7 @@ class UnreachedMaterial {
   std::size_t band_ = 0;                // points examined next to a boundary
   void measure_signal(const Model& model, const Particles<D>& pts);
   double signal_ = 0.0;
-  double speed_tolerance_ = 0.0;
+  double speed_tolerance_ = 0.0, energy_tolerance_ = 0.0;
 };
 
 extern template class UnreachedMaterial<2>;
