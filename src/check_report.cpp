@@ -59,13 +59,10 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
       << (s.effects.artificial_viscosity ? "on" : "off") << ", voids " << (s.porosity > 1.0 ? "on" : "off")
       << "; update scheme " << (s.update_scheme == UpdateScheme::musl ? "MUSL" : "USL") << "\n";
   const std::size_t per_point = st.particles.bytes_per_point() + StripBins::kBytesPerPoint;
-  // A mirrored run's snapshots build the whole set of points while they write.
   const double bytes = static_cast<double>(simulated) * static_cast<double>(per_point) +
-                       (mirrored ? static_cast<double>(whole * st.particles.bytes_per_point()) : 0.0) +
                        static_cast<double>(g.nodes()) * static_cast<double>(Grid<D>::bytes_per_node());
-  out << "memory: about " << bytes_text(bytes) << " (" << per_point << " bytes per simulated point"
-      << (mirrored ? " and the whole set while a snapshot is written" : "") << ", " << Grid<D>::bytes_per_node()
-      << " per node)\n";
+  out << "memory: about " << bytes_text(bytes) << " (" << per_point << " bytes per simulated point, "
+      << Grid<D>::bytes_per_node() << " per node)\n";
   return out.str();
 }
 

@@ -7,19 +7,6 @@
 namespace mpmshock {
 namespace {
 
-// M A M with M = diag(1, -1[, 1]): the components that couple y with another axis change sign.
-template <int D>
-Mat<D> reflected(const Mat<D>& a) {
-  Mat<D> r = a;
-  for (int i = 0; i < D; ++i)
-    for (int j = 0; j < D; ++j)
-      if ((i == 1) != (j == 1)) r(i, j) = -a(i, j);
-  return r;
-}
-
-Deviator<2> reflected(const Deviator<2>& s) { return {s.xx, s.yy, -s.xy}; }
-Deviator<3> reflected(const Deviator<3>& s) { return {s.xx, s.yy, -s.xy, -s.yz_, s.zx_}; }
-
 // The lattice cell of a point's initial position, with y reflected to the target's side.
 template <int D>
 std::size_t lattice_cell(const Vec<D>& x, double a, std::size_t columns, std::size_t rows) {
@@ -34,8 +21,8 @@ std::size_t lattice_cell(const Vec<D>& x, double a, std::size_t columns, std::si
 
 template <int D>
 void reflect_point(Particles<D>& pts, std::size_t p) {
-  pts.x[p][1] = -pts.x[p][1];
-  pts.v[p][1] = -pts.v[p][1];
+  pts.x[p] = reflected(pts.x[p]);
+  pts.v[p] = reflected(pts.v[p]);
   pts.F[p] = reflected(pts.F[p]);
   pts.L[p] = reflected(pts.L[p]);
   if (pts.has_strength()) pts.s[p] = reflected(pts.s[p]);

@@ -73,12 +73,11 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
     options.grid_rows = sim.active_rows();
   }
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
-  std::optional<Particles<D>> whole;
-  if (mirror_.on()) whole = mirror_.whole(sim.particles());
-  const Particles<D>& points = whole ? *whole : sim.particles();
-  write_snapshot((dir_ / name).string(), points, thermal, run, options);
+  options.mirror = &mirror_;
+  write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);
   const GridGeometry<D>& g = sim.grid().geo;
-  xdmf_.add({name, sim.time(), points.size(), scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h});
+  const std::size_t points = sim.particles().size() + (mirror_.on() ? mirror_.flyer_points() : 0);
+  xdmf_.add({name, sim.time(), points, scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h});
 }
 
 template class Outputs<2>;

@@ -56,8 +56,6 @@ SizeEstimate estimate_size(const Scene& s) {
   Particles<D> sample;
   enable_fields(sample, s);
   e.point_bytes = e.points * static_cast<double>(sample.bytes_per_point() + StripBins::kBytesPerPoint);
-  // A snapshot of a mirrored run builds the whole impact's points while it writes (mirror_image.hpp).
-  if (mirrored) e.point_bytes += columns * rows * static_cast<double>(sample.bytes_per_point());
   e.node_bytes = e.nodes * static_cast<double>(Grid<D>::bytes_per_node());
   return e;
 }

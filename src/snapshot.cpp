@@ -40,12 +40,47 @@ void unflatten(const std::vector<double>& flat_values, std::vector<T>& v) {
 template <int D>
 constexpr hsize_t kDeviatorComponents = D == 2 ? 3 : 5;
 
+// The rows a snapshot holds: the simulated points, or with a mirror image the whole impact, the
+// mirrored flyer's rows made from the target's points one field at a time (a whole copy of the
+// points would hold half as much memory again as the run).
 template <int D>
-void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperature* thermal, int level,
+struct Rows {
+  const Particles<D>& p;
+  const MirrorImage<D>& mirror;
+
+  std::size_t size() const { return mirror.on() ? mirror.flyer_points() + p.size() : p.size(); }
+  // A field over the rows, `reflect` applied to the mirrored ones.
+  template <class T, class Reflect>
+  std::vector<T> field(const std::vector<T>& values, Reflect&& reflect) const {
+    std::vector<T> out(size());
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      const auto [q, mirrored] = mirror.source_of(static_cast<std::uint32_t>(k));
+      out[k] = mirrored ? reflect(values[q]) : values[q];
+    }
+    return out;
+  }
+  // A field the reflection leaves alone.
+  template <class T>
+  std::vector<T> field(const std::vector<T>& values) const {
+    return field(values, [](const T& v) { return v; });
+  }
+  // f(simulated point, mirrored) over the rows.
+  template <class F>
+  void each(F&& f) const {
+    for (std::size_t k = 0; k < size(); ++k) {
+      const auto [q, mirrored] = mirror.source_of(static_cast<std::uint32_t>(k));
+      f(k, q, mirrored);
+    }
+  }
+};
+
+template <int D>
+void write_particles(hid_t file, const Rows<D>& rows, const HugoniotTemperature* thermal, int level,
                      const MeltCurve& melt) {
+  const Particles<D>& p = rows.p;
   Handle group(H5Gcreate2(file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /particles");
   const hid_t g = group.get();
-  const std::size_t n = p.size();
+  const std::size_t n = rows.size();
   const hsize_t N = n, d = D;
   const Compression always{level > 0 ? level : 1};  // fields that compress >100x: worth it at any setting
   const Compression chosen{level};
@@ -55,28 +90,46 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
   };
   const char* per_depth = D == 2 ? " per metre of depth (plane strain)" : "";
 
-  h5::write_dataset(g, "id", H5T_NATIVE_UINT32, p.id.data(), {N}, "", "stable material-point number", always);
-  h5::write_dataset(g, "body", H5T_NATIVE_UINT8, p.body.data(), {N}, "", "0 flyer, 1 target", always);
-  doubles("position", flat(p.x), {N, d}, "m", D == 2 ? "x, y" : "x, y, z", chosen);
-  doubles("velocity", flat(p.v), {N, d}, "m/s", D == 2 ? "v_x, v_y" : "v_x, v_y, v_z", chosen);
-  doubles("mass", p.m.data(), {N}, D == 2 ? "kg/m" : "kg", (std::string("mass") + per_depth).c_str(), always);
+  {  // ids number the rows (the simulated points' are their indices); the mirrored rows are the flyer
+    std::vector<std::uint32_t> id(n);
+    std::vector<Body> body(n);
+    rows.each([&](std::size_t k, std::size_t q, bool mirrored) {
+      id[k] = static_cast<std::uint32_t>(k);
+      body[k] = mirrored ? Body::flyer : p.body[q];
+    });
+    h5::write_dataset(g, "id", H5T_NATIVE_UINT32, id.data(), {N}, "", "stable material-point number", always);
+    h5::write_dataset(g, "body", H5T_NATIVE_UINT8, body.data(), {N}, "", "0 flyer, 1 target", always);
+  }
+  const auto reflect_vec = [](const Vec<D>& u) { return reflected(u); };
+  const auto reflect_mat = [](const Mat<D>& a) { return reflected(a); };
+  doubles("position", flat(rows.field(p.x, reflect_vec)), {N, d}, "m", D == 2 ? "x, y" : "x, y, z", chosen);
+  doubles("velocity", flat(rows.field(p.v, reflect_vec)), {N, d}, "m/s", D == 2 ? "v_x, v_y" : "v_x, v_y, v_z", chosen);
+  doubles("mass", rows.field(p.m).data(), {N}, D == 2 ? "kg/m" : "kg", (std::string("mass") + per_depth).c_str(),
+          always);
 
   std::vector<double> scalar(n);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = p.volume(q);
-  doubles("volume", scalar.data(), {N}, D == 2 ? "m2" : "m3", (std::string("volume") + per_depth).c_str(), chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = p.density(q);
-  doubles("density", scalar.data(), {N}, "kg/m3", "density of the material point", chosen);
-  doubles("pressure", p.P.data(), {N}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)", chosen);
-  doubles("viscous_pressure", p.q.data(), {N}, "Pa", "artificial viscous pressure q", chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = thermal ? thermal->of_point(p, q) : std::nan("");
-  doubles("temperature", scalar.data(), {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
-  doubles("internal_energy", p.E.data(), {N}, "J/kg", "specific internal energy, 0 at the reference state", chosen);
+  auto per_point = [&](auto&& value) {  // a quantity the reflection leaves alone, over the rows
+    rows.each([&](std::size_t k, std::size_t q, bool) { scalar[k] = value(q); });
+    return scalar.data();
+  };
+  doubles("volume", per_point([&](std::size_t q) { return p.volume(q); }), {N}, D == 2 ? "m2" : "m3",
+          (std::string("volume") + per_depth).c_str(), chosen);
+  doubles("density", per_point([&](std::size_t q) { return p.density(q); }), {N}, "kg/m3",
+          "density of the material point", chosen);
+  doubles("pressure", rows.field(p.P).data(), {N}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)",
+          chosen);
+  doubles("viscous_pressure", rows.field(p.q).data(), {N}, "Pa", "artificial viscous pressure q", chosen);
+  doubles("temperature", per_point([&](std::size_t q) { return thermal ? thermal->of_point(p, q) : std::nan(""); }),
+          {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
+  doubles("internal_energy", rows.field(p.E).data(), {N}, "J/kg", "specific internal energy, 0 at the reference state",
+          chosen);
 
   std::vector<double> tensor(9 * n, 0.0);
-  for (std::size_t q = 0; q < n; ++q) {
+  rows.each([&](std::size_t k, std::size_t q, bool mirrored) {
     const double pq = p.P[q] + p.q[q];
-    const Deviator<D> s = p.has_strength() ? p.s[q] : Deviator<D>{};
-    double* t = &tensor[9 * q];
+    Deviator<D> s = p.has_strength() ? p.s[q] : Deviator<D>{};
+    if (mirrored) s = reflected(s);
+    double* t = &tensor[9 * k];
     t[0] = s.xx - pq;
     t[1] = t[3] = s.xy;
     t[4] = s.yy - pq;
@@ -85,21 +138,21 @@ void write_particles(hid_t file, const Particles<D>& p, const HugoniotTemperatur
       t[5] = t[7] = s.yz();
       t[2] = t[6] = s.zx();
     }
-  }
+  });
   doubles("stress", tensor.data(), {N, 3, 3}, "Pa",
           D == 2 ? "Cauchy stress s - (P + q) I, plane strain (zz non-zero)" : "Cauchy stress s - (P + q) I", chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = p.has_strength() ? p.eps_p[q] : 0.0;
-  doubles("plastic_strain", scalar.data(), {N}, "", "effective plastic strain", chosen);
-  for (std::size_t q = 0; q < n; ++q)
-    scalar[q] = thermal && thermal->of_point(p, q) >= melt.at(p.material_J(q));
-  doubles("melted", scalar.data(), {N}, "",
-          "1 where T is at or above the Lindemann melt temperature T_m(J), else 0 (0 with thermal = off)", chosen);
-  for (std::size_t q = 0; q < n; ++q) scalar[q] = p.has_failure() ? p.damage[q] : 0.0;
-  doubles("damage", scalar.data(), {N}, "",
+  doubles("plastic_strain", per_point([&](std::size_t q) { return p.has_strength() ? p.eps_p[q] : 0.0; }), {N}, "",
+          "effective plastic strain", chosen);
+  doubles("melted", per_point([&](std::size_t q) {
+            return thermal && thermal->of_point(p, q) >= melt.at(p.material_J(q)) ? 1.0 : 0.0;
+          }),
+          {N}, "", "1 where T is at or above the Lindemann melt temperature T_m(J), else 0 (0 with thermal = off)",
+          chosen);
+  doubles("damage", per_point([&](std::size_t q) { return p.has_failure() ? p.damage[q] : 0.0; }), {N}, "",
           "0 intact, rising from 0 while it opens in tension, 1 separated (spall = on; 0 without)", chosen);
-  doubles("deformation_gradient", flat(p.F), {N, d, d}, "",
+  doubles("deformation_gradient", flat(rows.field(p.F, reflect_mat)), {N, d, d}, "",
           D == 2 ? "F, in-plane (F_zz = 1), F[i][j] = dx_i/dX_j" : "F[i][j] = dx_i/dX_j", chosen);
-  doubles("velocity_gradient", flat(p.L), {N, d, d}, "1/s", "L = grad v of the last step, L[i][j] = dv_i/dx_j",
+  doubles("velocity_gradient", flat(rows.field(p.L, reflect_mat)), {N, d, d}, "1/s", "L = grad v of the last step, L[i][j] = dv_i/dx_j",
           chosen);
 }
 
@@ -118,10 +171,11 @@ void write_bodies(hid_t g, const RunState& run) {
 }
 
 template <int D>
-void write_restart(hid_t file, const Particles<D>& p, const RunState& run) {
+void write_restart(hid_t file, const Rows<D>& rows, const RunState& run) {
+  const Particles<D>& p = rows.p;
   Handle group(H5Gcreate2(file, "restart", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /restart");
   const hid_t g = group.get();
-  const hsize_t N = p.size(), C = kDeviatorComponents<D>;
+  const hsize_t N = rows.size(), C = kDeviatorComponents<D>;
   h5::write_double_attribute(g, "max_signal", run.clock.max_signal);
   h5::write_double_attribute(g, "work_mismatch", run.clock.work_mismatch);
   if (run.clock.unreached_tail != Clock::kNoneSaved) {  // indices of the simulated points (unreached.hpp)
@@ -138,23 +192,24 @@ void write_restart(hid_t file, const Particles<D>& p, const RunState& run) {
   h5::write_string_attribute(g, "random_state",
                              "none: random numbers are drawn only at set-up (the void layout, stored here)");
   write_bodies(g, run);
-  h5::write_dataset(g, "volume0", H5T_NATIVE_DOUBLE, p.V0.data(), {N}, D == 2 ? "m2" : "m3", "reference volume V0",
+  const auto reflect_deviator = [](const Deviator<D>& s) { return reflected(s); };
+  h5::write_dataset(g, "volume0", H5T_NATIVE_DOUBLE, rows.field(p.V0).data(), {N}, D == 2 ? "m2" : "m3", "reference volume V0",
                     {1});
   const char* components = D == 2 ? "xx, yy, xy (zz = -(xx + yy))" : "xx, yy, xy, yz, zx (zz = -(xx + yy))";
   if (p.has_strength())
-    h5::write_dataset(g, "deviatoric_stress", H5T_NATIVE_DOUBLE, flat(p.s), {N, C}, "Pa",
+    h5::write_dataset(g, "deviatoric_stress", H5T_NATIVE_DOUBLE, flat(rows.field(p.s, reflect_deviator)), {N, C}, "Pa",
                       (std::string("deviatoric stress s: ") + components).c_str());
   if (p.stores_cold_work())
-    h5::write_dataset(g, "stored_energy", H5T_NATIVE_DOUBLE, p.E_stored.data(), {N}, "J/kg",
+    h5::write_dataset(g, "stored_energy", H5T_NATIVE_DOUBLE, rows.field(p.E_stored).data(), {N}, "J/kg",
                       "plastic work stored as cold work, not heat (taylor_quinney < 1)");
   if (p.tracks_plastic_heat())
-    h5::write_dataset(g, "plastic_heat", H5T_NATIVE_DOUBLE, p.plastic_heat.data(), {N}, "J/kg",
+    h5::write_dataset(g, "plastic_heat", H5T_NATIVE_DOUBLE, rows.field(p.plastic_heat).data(), {N}, "J/kg",
                       "plastic work turned to heat so far (temperature_model = paper)");
   if (p.has_failure())
-    h5::write_dataset(g, "failure_J", H5T_NATIVE_DOUBLE, p.failure_J.data(), {N}, "",
+    h5::write_dataset(g, "failure_J", H5T_NATIVE_DOUBLE, rows.field(p.failure_J).data(), {N}, "",
                       "0 while intact; the volume ratio J at which the point began to open in tension");
   if (p.has_back_stress())
-    h5::write_dataset(g, "back_stress", H5T_NATIVE_DOUBLE, flat(p.alpha), {N, C}, "Pa",
+    h5::write_dataset(g, "back_stress", H5T_NATIVE_DOUBLE, flat(rows.field(p.alpha, reflect_deviator)), {N, C}, "Pa",
                       (std::string("back stress alpha (kinematic hardening): ") + components).c_str());
 }
 
@@ -346,7 +401,9 @@ void write_snapshot(const std::string& path, const Particles<D>& p, const Hugoni
       h5::write_double_attribute(f, "time", run.clock.time);
       h5::write_int_attribute(f, "step", run.clock.steps);
       h5::write_int_attribute(f, "snapshot", run.schedule.snapshot_index);
-      h5::write_int_attribute(f, "particle_count", static_cast<std::int64_t>(p.size()));
+      const MirrorImage<D> none;
+      const Rows<D> rows{p, options.mirror ? *options.mirror : none};
+      h5::write_int_attribute(f, "particle_count", static_cast<std::int64_t>(rows.size()));
       h5::write_string_attribute(f, "units", D == 2 ? "SI: m, s, kg, Pa, K, J/kg; 2D plane strain, extensive "
                                                       "quantities per metre of depth"
                                                     : "SI: m, s, kg, Pa, K, J/kg; 3D");
@@ -354,8 +411,8 @@ void write_snapshot(const std::string& path, const Particles<D>& p, const Hugoni
       h5::write_string_attribute(f, "scene", run.scene_text);
       h5::write_string_attribute(f, "mpmshock_version", kVersion);
       h5::write_int_attribute(f, "format_version", 2);
-      write_particles(f, p, thermal, options.compression, options.melt);
-      write_restart(f, p, run);
+      write_particles(f, rows, thermal, options.compression, options.melt);
+      write_restart(f, rows, run);
       if (options.grid) write_grid(f, options);
       h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flush " + tmp);
     }

@@ -61,6 +61,24 @@ class MirrorImage {
 template <int D>
 void reflect_point(Particles<D>& pts, std::size_t p);
 
+// The reflections about y = 0 of a point's fields: y negated; in a tensor, the components that
+// couple y with another axis.
+template <int D>
+Vec<D> reflected(Vec<D> u) {
+  u[1] = -u[1];
+  return u;
+}
+template <int D>
+Mat<D> reflected(const Mat<D>& a) {
+  Mat<D> r = a;
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j)
+      if ((i == 1) != (j == 1)) r(i, j) = -a(i, j);
+  return r;
+}
+inline Deviator<2> reflected(const Deviator<2>& s) { return {s.xx, s.yy, -s.xy}; }
+inline Deviator<3> reflected(const Deviator<3>& s) { return {s.xx, s.yy, -s.xy, -s.yz_, s.zx_}; }
+
 extern template class MirrorImage<2>;
 extern template class MirrorImage<3>;
 

@@ -10,6 +10,7 @@
 
 #include "mpmshock/diagnostics.hpp"
 #include "mpmshock/grid.hpp"
+#include "mpmshock/mirror_image.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/schedule.hpp"
 #include "mpmshock/setup.hpp"
@@ -34,10 +35,12 @@ struct SnapshotOptions {
   const Grid<D>* grid = nullptr;  // write /grid when given
   RowRange grid_rows;             // the grid's rows that hold this step's values
   MeltCurve melt;                 // for /particles/melted
+  const MirrorImage<D>* mirror = nullptr;  // symmetry = on: write the whole impact (mirror_image.hpp)
 };
 
 // Writes PATH.tmp and renames it over PATH when complete, so an interrupted write never leaves a
-// half-written PATH. Throws std::runtime_error naming the path.
+// half-written PATH. With options.mirror on, the points are the target's and the file holds the
+// whole impact. Throws std::runtime_error naming the path.
 template <int D>
 void write_snapshot(const std::string& path, const Particles<D>& p, const HugoniotTemperature* thermal,
                     const RunState& run, const SnapshotOptions<D>& options);
