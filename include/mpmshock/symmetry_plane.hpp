@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/mirror_image.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/step_effect.hpp"
 
@@ -52,10 +53,6 @@ class SymmetryPlane final : public StepEffect<D> {
  private:
   int plane_row_;  // the node row on y = 0
 
-  static Vec<D> reflected(Vec<D> u) {
-    u[1] = -u[1];
-    return u;
-  }
   static const Vec<D>& add_reflected(Vec<D>& to, const Vec<D>& u) {
     for (int d = 0; d < D; ++d) to[d] += d == 1 ? -u[d] : u[d];
     return to;
