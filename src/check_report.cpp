@@ -40,7 +40,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   out << "material points: " << whole << " (" << s.particles_per_cell << " x " << s.particles_per_cell
       << " per cell)\n";
   const bool mirrored = st.mirror.on();
-  const std::string why_off = asymmetry_of(s).empty() ? "heat_conduction = on, or as the scene sets it" : asymmetry_of(s);
+  const std::string asymmetry = asymmetry_of(s);
+  const std::string why_off = asymmetry.empty() ? "heat_conduction = on, or as the scene sets it" : asymmetry;
   out << "symmetry: "
       << (mirrored ? "on: the target's " + std::to_string(simulated) +
                          " points are simulated, the flyer is their mirror image about y = 0"

@@ -63,9 +63,7 @@ MirrorImage<D>::MirrorImage(const Particles<D>& whole) : on_(true) {
     const std::string which = "flyer point " + std::to_string(f);
     if (t == kNone || used[t]) fail(which + " has no target point at its mirror position");
     const std::size_t q = flyer + t;
-    Vec<D> image = whole.x[q], velocity = whole.v[q];
-    image[1] = -image[1];
-    velocity[1] = -velocity[1];
+    const Vec<D> image = reflected(whole.x[q]), velocity = reflected(whole.v[q]);
     for (int d = 0; d < D; ++d)
       if (std::abs(x[d] - image[d]) > 1e-9 * a || whole.v[f][d] != velocity[d])
         fail(which + " is not the mirror image of target point " + std::to_string(t) + " in position or velocity");
@@ -93,14 +91,16 @@ template <int D>
 Particles<D> MirrorImage<D>::whole(const Particles<D>& half) const {
   Particles<D> out;
   out.enable_fields_of(half);
-  out.reserve(mirror_of_.size() + half.size());
-  for (std::size_t f = 0; f < mirror_of_.size(); ++f) {
-    out.append_copy(half, mirror_of_[f]);
-    reflect_point(out, f);
-    out.body[f] = Body::flyer;
+  const std::size_t n = mirror_of_.size() + half.size();
+  out.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto [q, mirrored] = source_of(static_cast<std::uint32_t>(k));
+    out.append_copy(half, q);
+    out.id[k] = static_cast<std::uint32_t>(k);
+    if (!mirrored) continue;
+    reflect_point(out, k);
+    out.body[k] = Body::flyer;
   }
-  for (std::size_t p = 0; p < half.size(); ++p) out.append_copy(half, p);
-  for (std::size_t p = 0; p < out.size(); ++p) out.id[p] = static_cast<std::uint32_t>(p);
   return out;
 }
 

@@ -9,19 +9,24 @@
 #include "mpmshock/parallel.hpp"
 
 namespace mpmshock {
+
 template <int D>
-UnreachedMaterial<D>::UnreachedMaterial(const Scene& scene, const Model& model, const Particles<D>& pts)
-    : on_(true), points_(pts.size()), flyer_(flyer_points(pts)), flyer_velocity_(scene.velocity),
+UnreachedMaterial<D>::UnreachedMaterial(const Scene& scene, std::size_t points, std::size_t flyer)
+    : on_(true), points_(points), flyer_(flyer), head_(flyer), tail_(flyer), flyer_velocity_(scene.velocity),
       target_velocity_(-scene.velocity), margin_(kMarginCells * scene.cell_size),
       speed_tolerance_(1e-9 * std::max(scene.velocity, 1.0)),
       energy_tolerance_(1e-12 * 0.5 * std::max(scene.velocity, 1.0) * std::max(scene.velocity, 1.0)) {
   // The points of 2 margins of lattice rows: the band next to a boundary that follow() examines.
   const double a = scene.particle_spacing();
   band_ = static_cast<std::size_t>(2.0 * std::ceil(margin_ / a) * std::pow(std::round(scene.width / a), D - 1));
+}
+
+template <int D>
+UnreachedMaterial<D>::UnreachedMaterial(const Scene& scene, const Model& model, const Particles<D>& pts)
+    : UnreachedMaterial(scene, pts.size(), flyer_points(pts)) {
   // The impact plane is where the bodies are first reached, unless a point has left its initial
   // state already (a state set up by hand).
   double top = 0.0, bottom = 0.0;
-  head_ = tail_ = flyer_;
   for (std::size_t p = 0; p < points_; ++p) {
     if (!reached(pts, p)) continue;
     if (p < flyer_) {
@@ -40,7 +45,7 @@ UnreachedMaterial<D>::UnreachedMaterial(const Scene& scene, const Model& model, 
 template <int D>
 UnreachedMaterial<D>::UnreachedMaterial(const Scene& scene, const Model& model, const Particles<D>& pts,
                                         std::size_t head, std::size_t tail)
-    : UnreachedMaterial(scene, model, pts) {
+    : UnreachedMaterial(scene, pts.size(), flyer_points(pts)) {
   if (head > flyer_ || tail < flyer_ || tail > points_)
     throw SceneError("its unreached material [0, " + std::to_string(head) + ") and [" + std::to_string(tail) + ", " +
                      std::to_string(points_) + ") does not fit its " + std::to_string(flyer_) +

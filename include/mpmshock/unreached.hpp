@@ -59,6 +59,8 @@ class UnreachedMaterial {
   bool reached(const Particles<D>& pts, std::size_t p) const;
 
  private:
+  // The constants of a scene's unreached material, nothing unreached yet.
+  UnreachedMaterial(const Scene& scene, std::size_t points, std::size_t flyer);
   bool on_ = false;
   std::size_t points_ = 0, flyer_ = 0;  // all points; the flyer's [0, flyer_)
   std::size_t head_ = 0, tail_ = 0;     // computed: [head_, tail_)
