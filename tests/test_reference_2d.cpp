@@ -1,0 +1,187 @@
+// The 2D results stay what they were: three tiny impacts (the default model; every optional effect
+// with gimp and USL; the paper's bilinear cells and temperature) run to their end, and every per-point
+// field of the final state is compared with tests/data/reference_2d.txt, written before 3D was added.
+// Bitwise where that is meaningful: floating-point results depend on the compiler and on the
+// instructions it may use (FMA contraction under -march=native), so the reference records the build
+// it was made with. A build with the same fingerprint must match every field's bytes (a 64-bit hash);
+// another build compares each field's sum of magnitudes to 1e-9 instead, and says so.
+//
+//   test_reference_2d SCENE            compare
+//   test_reference_2d SCENE --write F  (re)write the reference file F
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "check.hpp"
+#include "compare_outputs.hpp"
+#include "mpmshock/setup.hpp"
+#include "mpmshock/simulation.hpp"
+
+using namespace mpmshock;
+
+namespace {
+
+std::string build_fingerprint() {
+  std::string f = MPMSHOCK_BUILD_FINGERPRINT;
+  f += " | gcc " __VERSION__;
+#ifdef __FMA__
+  f += " fma";
+#endif
+#ifdef __AVX2__
+  f += " avx2";
+#endif
+#ifdef __AVX512F__
+  f += " avx512f";
+#endif
+  return f;
+}
+
+struct Case {
+  std::string name;
+  std::vector<std::string> overrides;
+};
+
+// Short runs that still see the shock cross voids, the free surfaces and every effect's code path.
+const std::vector<Case> kCases = {
+    {"default", {}},
+    {"every_effect",
+     {"symmetry=off", "shape_function=gimp", "spall=on", "heat_conduction=on",
+      "thermal_softening=on", "hardening_beta=0.5", "taylor_quinney=0.9", "flip_fraction=0.98", "update_scheme=usl"}},
+    {"paper_cells",
+     {"shape_function=bilinear",
+      "temperature_model=paper", "skip_unreached=off", "flyer_mirror=off"}},
+};
+
+struct FieldSum {
+  std::uint64_t hash = 0;
+  double magnitude = 0.0;  // sum of |component| over the field
+};
+
+std::uint64_t fnv1a(const void* data, std::size_t bytes, std::uint64_t h = 1469598103934665603ull) {
+  const auto* b = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  return h;
+}
+
+template <class T>
+FieldSum sum_of(const std::vector<T>& v) {
+  FieldSum s;
+  s.hash = fnv1a(v.data(), v.size() * sizeof(T));
+  if constexpr (std::is_same_v<T, double>) {
+    for (double x : v) s.magnitude += std::abs(x);
+  } else if constexpr (sizeof(T) % sizeof(double) == 0) {
+    for (const T& x : v) {
+      double c[sizeof(T) / sizeof(double)];
+      std::memcpy(c, &x, sizeof c);
+      for (double y : c) s.magnitude += std::abs(y);
+    }
+  } else {
+    for (const T& x : v) s.magnitude += static_cast<double>(x);
+  }
+  return s;
+}
+
+// The name of a per-point field, from its member pointer.
+template <class Member>
+std::string field_name(Member member) {
+  using P = Particles<2>;
+#define NAME_OF(f)                                                         \
+  if constexpr (std::is_same_v<Member, decltype(&P::f)>) {                 \
+    if (member == &P::f) return #f;                                        \
+  }
+  NAME_OF(x) NAME_OF(v) NAME_OF(m) NAME_OF(V0) NAME_OF(F) NAME_OF(L) NAME_OF(work) NAME_OF(E) NAME_OF(P) NAME_OF(q)
+  NAME_OF(s) NAME_OF(alpha) NAME_OF(eps_p) NAME_OF(failure_J) NAME_OF(damage) NAME_OF(E_stored) NAME_OF(plastic_heat)
+  NAME_OF(id) NAME_OF(body)
+#undef NAME_OF
+  return "unnamed";
+}
+
+// "case field" -> sums of the final state of each case.
+std::map<std::string, FieldSum> run_cases(const std::string& scene_path) {
+  std::map<std::string, FieldSum> out;
+  for (const Case& c : kCases) {
+    const Scene scene = load_scene(scene_path, c.overrides);
+    InitialState<2> initial = build_initial_state<2>(scene);
+    Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
+    if (!compare::march(sim, scene.end_time, c.name)) continue;
+    const Particles<2>& p = sim.particles();
+    p.for_each_member([&](auto member) { out[c.name + " " + field_name(member)] = sum_of(p.*member); });
+    std::printf("%s: %zu points, %" PRId64 " steps to %.3g ns\n", c.name.c_str(), p.size(), sim.steps(),
+                sim.time() * 1e9);
+    FieldSum clock;
+    const double clock_values[] = {sim.time(), sim.clock().work_mismatch, sim.clock().max_signal};
+    clock.hash = fnv1a(clock_values, sizeof clock_values);
+    clock.magnitude = std::abs(sim.clock().work_mismatch);
+    out[c.name + " clock"] = clock;
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return 2;
+  const std::map<std::string, FieldSum> now = run_cases(argv[1]);
+  const std::string fingerprint = build_fingerprint();
+
+  if (argc == 4 && std::string(argv[2]) == "--write") {
+    std::ofstream f(argv[3]);
+    f << "# test_reference_2d: the final state of its three cases, per field: 64-bit hash of the bytes, sum of |x|\n";
+    f << "build " << fingerprint << "\n";
+    for (const auto& [key, s] : now) {
+      char line[200];
+      std::snprintf(line, sizeof line, "%s %016" PRIx64 " %.17g\n", key.c_str(), s.hash, s.magnitude);
+      f << line;
+    }
+    std::printf("wrote %s\n", argv[3]);
+    return check::result();
+  }
+
+  std::ifstream f(MPMSHOCK_REFERENCE_2D);
+  CHECK(f.good());
+  std::string line, made_with;
+  std::map<std::string, FieldSum> ref;
+  while (std::getline(f, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (line.rfind("build ", 0) == 0) {
+      made_with = line.substr(6);
+      continue;
+    }
+    std::istringstream in(line);
+    std::string name, index, hash;
+    FieldSum s;
+    in >> name >> index >> hash >> s.magnitude;
+    s.hash = std::stoull(hash, nullptr, 16);
+    ref[name + " " + index] = s;
+  }
+  const bool bitwise = made_with == fingerprint;
+  if (bitwise)
+    std::printf("this build is the reference's: every field must match bit for bit\n");
+  else
+    std::printf("this build (%s)\ndiffers from the reference's (%s):\nbitwise not checked, each field's sum to 1e-9\n",
+                fingerprint.c_str(), made_with.c_str());
+  CHECK(ref.size() == now.size());
+  int differ = 0;
+  for (const auto& [key, r] : ref) {
+    const auto it = now.find(key);
+    CHECK(it != now.end());
+    if (it == now.end()) continue;
+    const FieldSum& s = it->second;
+    const double rel = std::abs(s.magnitude - r.magnitude) / std::max(std::abs(r.magnitude), 1e-300);
+    const bool same = bitwise ? s.hash == r.hash : rel <= 1e-9 || (r.magnitude == 0.0 && s.magnitude == 0.0);
+    if (!same) {
+      ++differ;
+      std::printf("  %s differs: sum %.17g against %.17g (relative %.2e)\n", key.c_str(), s.magnitude, r.magnitude, rel);
+    }
+  }
+  std::printf("%zu fields compared, %d differ\n", ref.size(), differ);
+  CHECK(differ == 0);
+  return check::result();
+}
