@@ -1,6 +1,7 @@
 // The 2D results stay what they were: three tiny impacts (the default model; every optional effect
 // with gimp and USL; the paper's bilinear cells and temperature) run to their end, and every per-point
 // field of the final state is compared with tests/data/reference_2d.txt, written before 3D was added.
+//
 // Bitwise where that is meaningful: floating-point results depend on the compiler and on the
 // instructions it may use (FMA contraction under -march=native), so the reference records the build
 // it was made with. A build with the same fingerprint must match every field's bytes (a 64-bit hash);
