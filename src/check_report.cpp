@@ -25,20 +25,26 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   const GridGeometry<D>& g = st.grid;
   auto body = [&](const BodySummary& b) {
     out << "  " << b.name << ": y " << b.y_bottom * 1e3 << " .. " << b.y_top * 1e3 << " mm, " << b.material_points
-        << " material points, " << b.voids.size() << " voids, porosity " << b.porosity() << "\n";
+        << " material points, " << b.voids.size() << (D == 3 ? " spherical" : "") << " voids, porosity " << b.porosity() << "\n";
   };
   const double porosity = porosity_of(st.target, st.flyer);
   out << "scene " << s.source << "\n";
-  out << "bodies (width " << s.width * 1e3 << " mm, periodic in x, impact speed +-" << s.velocity << " m/s)\n";
+  if (D == 2)
+    out << "bodies (width " << s.width * 1e3 << " mm, periodic in x, 2D plane strain, impact speed +-" << s.velocity
+        << " m/s)\n";
+  else
+    out << "bodies (3D, width " << s.width * 1e3 << " mm x depth " << s.derived_depth() * 1e3
+        << " mm, periodic in x and z, impact speed +-" << s.velocity << " m/s)\n";
   body(st.target);
   body(st.flyer);
   out << "  porosity requested " << s.porosity << ", achieved " << porosity << " (relative error "
       << std::abs(porosity - s.porosity) / s.porosity << ")\n";
-  out << "grid: " << g.nx << " x " << g.ny - 1 << " cells of " << g.h * 1e6 << " um, y " << g.y_min * 1e3 << " .. "
+  out << "grid: " << g.nx << (D == 3 ? " x " + std::to_string(g.nz) : std::string()) << " x " << g.ny - 1 << " cells of " << g.h * 1e6 << " um, y " << g.y_min * 1e3 << " .. "
       << g.y_max() * 1e3 << " mm, " << g.nodes() << " nodes\n";
   const std::size_t whole = st.target.material_points + st.flyer.material_points, simulated = st.particles.size();
-  out << "material points: " << whole << " (" << s.particles_per_cell << " x " << s.particles_per_cell
-      << " per cell)\n";
+  out << "material points: " << whole << " (" << s.particles_per_cell << " x " << s.particles_per_cell;
+  if (D == 3) out << " x " << s.particles_per_cell;
+  out << " per cell)\n";
   const bool mirrored = st.mirror.on();
   const std::string asymmetry = asymmetry_of(s);
   const std::string why_off = asymmetry.empty() ? "heat_conduction = on, or as the scene sets it" : asymmetry;
@@ -67,11 +73,16 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   return out.str();
 }
 
+template <int D>
+std::string check_in(const Scene& scene) {
+  check_fits<D>(scene);
+  return describe_setup(scene, build_initial_state<D>(scene));
+}
+
 }  // namespace
 
 std::string check_report(const Scene& scene) {
-  check_fits<2>(scene);
-  return describe_setup(scene, build_initial_state<2>(scene));
+  return scene.dimension == 3 ? check_in<3>(scene) : check_in<2>(scene);
 }
 
 }  // namespace mpmshock

@@ -112,9 +112,9 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
 
   // The bodies as the scene builds them.
   const double a = scene.particle_spacing();
-  const auto columns = static_cast<std::size_t>(std::lround(scene.width / a));
-  const std::size_t lattice[2] = {columns * static_cast<std::size_t>(std::lround(scene.target_height / a)),
-                                  columns * static_cast<std::size_t>(std::lround(scene.flyer_height / a))};
+  const auto across = static_cast<std::size_t>(scene.points_across());
+  const std::size_t lattice[2] = {across * static_cast<std::size_t>(std::lround(scene.target_height / a)),
+                                  across * static_cast<std::size_t>(std::lround(scene.flyer_height / a))};
   const BodySummary* bodies[2] = {&run.target, &run.flyer};
   std::size_t material = 0;
   for (int b = 0; b < 2; ++b) {
@@ -268,20 +268,31 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
 RunResult restart_run(const std::string& snapshot, const std::vector<std::string>& overrides,
                       const RunOptions& options) {
   check_restart_overrides(snapshot, overrides);
-  return restart_from<2>(snapshot, overrides, options);
+  return read_snapshot_header(snapshot).dimension == 3 ? restart_from<3>(snapshot, overrides, options)
+                                                        : restart_from<2>(snapshot, overrides, options);
 }
 
-std::string check_restart(const std::string& snapshot, const std::vector<std::string>& overrides) {
-  check_restart_overrides(snapshot, overrides);
-  Restart<2> r = read_snapshot<2>(snapshot);
+namespace {
+
+template <int D>
+std::string check_restart_in(const std::string& snapshot, const std::vector<std::string>& overrides) {
+  Restart<D> r = read_snapshot<D>(snapshot);
   const Scene scene =
       parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, overrides));
-  check_fits<2>(scene);
-  validate_restart(r, scene, build_grid_geometry<2>(scene), snapshot);
+  check_fits<D>(scene);
+  validate_restart(r, scene, build_grid_geometry<D>(scene), snapshot);
   std::ostringstream out;
   out << "snapshot " << snapshot << ": t = " << r.run.clock.time * 1e9 << " ns, step " << r.run.clock.steps << ", "
       << r.points.size() << " material points; checksum and state valid\n";
   return out.str();
+}
+
+}  // namespace
+
+std::string check_restart(const std::string& snapshot, const std::vector<std::string>& overrides) {
+  check_restart_overrides(snapshot, overrides);
+  return read_snapshot_header(snapshot).dimension == 3 ? check_restart_in<3>(snapshot, overrides)
+                                                        : check_restart_in<2>(snapshot, overrides);
 }
 
 }  // namespace mpmshock

@@ -42,7 +42,9 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
 
 }  // namespace
 
-RunResult run_scene(const Scene& scene, const RunOptions& options) { return run_new<2>(scene, options); }
+RunResult run_scene(const Scene& scene, const RunOptions& options) {
+  return scene.dimension == 3 ? run_new<3>(scene, options) : run_new<2>(scene, options);
+}
 
 std::string describe_result(const RunResult& r) {
   std::ostringstream out;

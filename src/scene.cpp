@@ -264,6 +264,13 @@ const std::vector<Key>& keys() {
                          FIELD(flyer_height)));
     k.push_back(quantity("width", D::length, Range{0.0, 10.0, true, false}, "2 mm", "width of the periodic column (x)",
                          FIELD(width)));
+    k.push_back(choice<int>("dimension", {{"2", 2}, {"3", 3}}, "2",
+                            "2: plane strain in x, y (per metre of depth); 3: a column periodic in x and z, "
+                            "spherical voids",
+                            FIELD(dimension)));
+    k.push_back(quantity("depth", D::length, Range{0.0, 10.0, true, false}, "auto",
+                         "z extent of the periodic column in 3D (dimension = 3); auto = width",
+                         FIELD(depth)));
     // Discretisation
     k.push_back(quantity("cell_size", D::length, Range{0.0, 1.0, true, false}, "20 um", "background grid cell size h",
                          FIELD(cell_size)));
@@ -637,6 +644,8 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   if (s.width < 3.0 * s.cell_size * (1.0 - 1e-9))
     fail("width", "must be at least 3 cells (the widest shape-function stencil); a narrower periodic column "
                   "would put one node in a stencil twice");
+  if (s.dimension == 3 && !is_multiple(s.derived_depth(), s.cell_size))
+    fail("depth", "must be a whole number of cells (cell_size = " + format_number(s.cell_size) + " m)");
   if (!is_multiple(s.target_height, a))
     fail("target_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
                               format_number(a) + " m)");
@@ -666,7 +675,8 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     if (2.0 * r_min < a)
       fail("void_radius", "voids smaller than the material-point spacing (" + format_number(a) +
                               " m) cannot be cut from the points; refine cell_size or use larger voids");
-    if (2.0 * r_max + s.void_min_gap > std::min({s.width, s.target_height, s.flyer_height}))
+    const double across = s.dimension == 3 ? std::min(s.width, s.derived_depth()) : s.width;
+    if (2.0 * r_max + s.void_min_gap > std::min({across, s.target_height, s.flyer_height}))
       fail("void_radius", "voids that cannot fit: a void of diameter " + format_number(2.0 * r_max) +
                               " m does not fit in the bodies");
     if (s.flyer_mirror && std::abs(s.flyer_height - s.target_height) > 1e-12 * s.target_height)
@@ -682,7 +692,7 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   if (s.grid_margin >= 0.0 && s.grid_margin < 2.0 * s.cell_size)
     fail("grid_margin", "must be at least two cells (or 'auto')");
   // Sizes that would not fit in memory are refused here, before anything is allocated.
-  const double points = (s.target_height + s.flyer_height) * s.width / (a * a);
+  const double points = (s.target_height + s.flyer_height) / a * s.points_across();
   if (!(points <= 2.0e9))
     fail("cell_size", "the scene would need " + format_number(std::round(points)) +
                           " material points; at most 2e9 are supported");
@@ -708,6 +718,11 @@ std::string asymmetry_of(const Scene& s) {
     return "flyer_height differs from target_height";
   if (s.porosity > 1.0 && !s.flyer_mirror) return "flyer_mirror = off gives the flyer its own voids";
   return "";
+}
+
+double Scene::points_across() const {
+  const double a = particle_spacing();
+  return std::round(width / a) * (dimension == 3 ? std::round(derived_depth() / a) : 1.0);
 }
 
 double Scene::derived_grid_margin() const {
@@ -810,6 +825,7 @@ std::string resolved_scene(const Scene& scene) {
   for (const Key& k : keys()) {
     std::string value = k.get(scene);
     if (k.name == "grid_margin") value = format_number(scene.derived_grid_margin()) + " m";
+    if (k.name == "depth") value = format_number(scene.derived_depth()) + " m";
     out += k.name + " = " + value + "\n";
   }
   for (const RegionSpec& r : scene.regions) {

@@ -17,6 +17,7 @@ GridGeometry<D> build_grid_geometry(const Scene& s) {
   g.h = s.cell_size;
   g.inv_h = 1.0 / s.cell_size;
   g.nx = static_cast<int>(std::lround(s.width / s.cell_size));
+  if constexpr (D == 3) g.nz = static_cast<int>(std::lround(s.derived_depth() / s.cell_size));
   const double margin = s.derived_grid_margin();
   // Node row `below` sits on the impact plane y = 0, so the plane is a grid line.
   const int below = static_cast<int>(std::ceil((s.flyer_height + margin) / s.cell_size - 1e-9));
@@ -45,14 +46,12 @@ template <int D>
 SizeEstimate estimate_size(const Scene& s) {
   SizeEstimate e;
   const double a = s.particle_spacing();
-  const double columns = std::round(s.width / a);
+  const double across = s.points_across();
   const double rows = std::round(s.target_height / a) + std::round(s.flyer_height / a);
   const bool mirrored = s.symmetry == Symmetry::on;  // the target alone, the flyer its mirror image
-  e.points = columns * (mirrored ? std::round(s.target_height / a) : rows);  // before the voids are cut: an upper bound
-  const double margin = s.derived_grid_margin();
-  const double nx = std::round(s.width / s.cell_size);
-  const double ny = std::ceil((s.flyer_height + margin) / s.cell_size) + std::ceil((s.target_height + margin) / s.cell_size) + 1;
-  e.nodes = nx * ny;
+  e.points = across * (mirrored ? std::round(s.target_height / a) : rows);  // before the voids are cut: an upper bound
+  const GridGeometry<D> g = build_grid_geometry<D>(s);
+  e.nodes = static_cast<double>(g.nodes());
   Particles<D> sample;
   enable_fields(sample, s);
   e.point_bytes = e.points * static_cast<double>(sample.bytes_per_point() + StripBins::kBytesPerPoint);
@@ -85,15 +84,24 @@ void check_fits(const Scene& s) {
 
 namespace {
 
-// Adds the surviving lattice points of one body, bottom row first so that storage follows y.
-void add_points(Particles<2>& p, const Lattice& lat, const VoidLayout& layout, double vy, double rho0, Body body) {
+// Adds the surviving lattice points of one body in lattice order (bottom row first, so that
+// storage follows y).
+template <int D>
+void add_points(Particles<D>& p, const Lattice& lat, const VoidLayout& layout, double vy, double rho0, Body body) {
   const double a = lat.spacing;
-  const double V0 = a * a;
+  const double V0 = D == 2 ? a * a : a * a * a;
+  Vec<D> velocity{};
+  velocity[1] = vy;
   for (int j = 0; j < lat.rows; ++j)
-    for (int i = 0; i < lat.columns; ++i) {
-      if (layout.removed[lat.index(i, j)]) continue;
-      p.add({{lat.x0 + (i + 0.5) * a, lat.y0 + (j + 0.5) * a}}, {{0.0, vy}}, rho0 * V0, V0, body);
-    }
+    for (int k = 0; k < lat.layers; ++k)
+      for (int i = 0; i < lat.columns; ++i) {
+        if (layout.removed[lat.index(i, j, k)]) continue;
+        Vec<D> x{};
+        x[0] = lat.x0 + (i + 0.5) * a;
+        x[1] = lat.y0 + (j + 0.5) * a;
+        if constexpr (D == 3) x[2] = (k + 0.5) * a;
+        p.add(x, velocity, rho0 * V0, V0, body);
+      }
 }
 
 BodySummary summarize(const char* name, const Lattice& lat, const VoidLayout& layout) {
@@ -109,15 +117,17 @@ BodySummary summarize(const char* name, const Lattice& lat, const VoidLayout& la
 
 }  // namespace
 
-template <>
-InitialState<2> build_initial_state<2>(const Scene& s) {
-  InitialState<2> st;
-  st.grid = build_grid_geometry<2>(s);
+template <int D>
+InitialState<D> build_initial_state(const Scene& s) {
+  InitialState<D> st;
+  st.grid = build_grid_geometry<D>(s);
 
   const double a = s.particle_spacing();
-  const int columns = static_cast<int>(std::lround(s.width / a));
-  const Lattice target{0.0, 0.0, a, columns, static_cast<int>(std::lround(s.target_height / a))};
-  const Lattice flyer{0.0, -s.flyer_height, a, columns, static_cast<int>(std::lround(s.flyer_height / a))};
+  Lattice target{0.0, 0.0, a, static_cast<int>(std::lround(s.width / a)), static_cast<int>(std::lround(s.target_height / a))};
+  if constexpr (D == 3) target.layers = static_cast<int>(std::lround(s.derived_depth() / a)), target.dimension = 3;
+  Lattice flyer = target;
+  flyer.y0 = -s.flyer_height;
+  flyer.rows = static_cast<int>(std::lround(s.flyer_height / a));
 
   const VoidRequest request{s.porosity, s.void_radius, s.void_radius_spread, s.void_min_gap, s.void_overlap};
   std::mt19937_64 rng(static_cast<std::uint64_t>(s.seed));
@@ -139,12 +149,14 @@ InitialState<2> build_initial_state<2>(const Scene& s) {
   st.target = summarize("target", target, target_voids);
   st.flyer = summarize("flyer", flyer, flyer_voids);
   if (s.symmetry == Symmetry::on) {
-    st.mirror = MirrorImage<2>(st.particles);
+    st.mirror = MirrorImage<D>(st.particles);
     st.particles = st.mirror.half(st.particles);
   }
   return st;
 }
 
+template InitialState<2> build_initial_state<2>(const Scene&);
+template InitialState<3> build_initial_state<3>(const Scene&);
 template SizeEstimate estimate_size<2>(const Scene&);
 template SizeEstimate estimate_size<3>(const Scene&);
 template void check_fits<2>(const Scene&);

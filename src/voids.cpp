@@ -7,39 +7,61 @@
 namespace mpmshock {
 namespace {
 
-// Buckets of voids for the overlap test, periodic in x. A bucket is at least as wide as the
-// largest centre distance that can still overlap, so only the 3x3 neighbourhood is searched.
+// The distance between two coordinates on a periodic axis of the given period.
+double periodic_distance(double a, double b, double period) {
+  const double d = std::abs(a - b);
+  return std::min(d, period - d);
+}
+
+// Up to three distinct neighbouring buckets of bucket c on a periodic axis of n buckets (fewer
+// than 3 buckets: every bucket is a neighbour); returns how many.
+int periodic_neighbours(int c, int n, int out[3]) {
+  if (n < 3) {
+    for (int k = 0; k < n; ++k) out[k] = k;
+    return n;
+  }
+  out[0] = c, out[1] = (c + 1) % n, out[2] = (c + n - 1) % n;
+  return 3;
+}
+
+// Buckets of voids for the overlap test, periodic in x (and z). A bucket is at least as wide as
+// the largest centre distance that can still overlap, so only the 3 x 3 (x 3) neighbourhood is
+// searched.
 class VoidBuckets {
  public:
-  VoidBuckets(const Lattice& lat, double reach) : width_(lat.width()), y0_(lat.y0) {
+  VoidBuckets(const Lattice& lat, double reach)
+      : width_(lat.width()), depth_(lat.depth()), y0_(lat.y0), periodic_z_(lat.dimension == 3) {
     nx_ = std::max(1, static_cast<int>(std::floor(width_ / reach)));
     ny_ = std::max(1, static_cast<int>(std::floor(lat.height() / reach)));
+    nz_ = periodic_z_ ? std::max(1, static_cast<int>(std::floor(depth_ / reach))) : 1;
     bx_ = width_ / nx_;
     by_ = lat.height() / ny_;
-    buckets_.resize(static_cast<std::size_t>(nx_) * ny_);
+    bz_ = depth_ / nz_;
+    buckets_.resize(static_cast<std::size_t>(nx_) * ny_ * nz_);
   }
 
-  void insert(const Void& v, std::size_t index) { buckets_[bucket(v.x, v.y)].push_back(index); }
+  void insert(const Void& v, std::size_t index) { buckets_[bucket(v.x, v.y, v.z)].push_back(index); }
 
-  // True if a void at (x, y, r) stays at least `gap` away from every stored one.
-  bool clear_of(const std::vector<Void>& voids, double x, double y, double r, double gap) const {
-    const int cx = column(x), cy = row(y);
-    int columns[3] = {cx, (cx + 1) % nx_, (cx + nx_ - 1) % nx_};
-    const int ncol = nx_ >= 3 ? 3 : nx_;  // fewer than 3 columns: every column is a neighbour
-    if (nx_ < 3) for (int k = 0; k < nx_; ++k) columns[k] = k;
+  // True if a void `v` stays at least `gap` away from every stored one.
+  bool clear_of(const std::vector<Void>& voids, const Void& v, double gap) const {
+    int columns[3], layers[3];
+    const int ncol = periodic_neighbours(column(v.x), nx_, columns);
+    const int nlay = periodic_neighbours(layer(v.z), nz_, layers);
+    const int cy = row(v.y);
     for (int dy = -1; dy <= 1; ++dy) {
       const int ry = cy + dy;
       if (ry < 0 || ry >= ny_) continue;
-      for (int k = 0; k < ncol; ++k) {
-        for (std::size_t index : buckets_[static_cast<std::size_t>(ry) * nx_ + columns[k]]) {
-          const Void& o = voids[index];
-          double dx = std::abs(o.x - x);
-          dx = std::min(dx, width_ - dx);
-          const double dyv = o.y - y;
-          const double reach = r + o.r + gap;
-          if (dx * dx + dyv * dyv < reach * reach) return false;
+      for (int l = 0; l < nlay; ++l)
+        for (int k = 0; k < ncol; ++k) {
+          for (std::size_t index : buckets_[key(columns[k], ry, layers[l])]) {
+            const Void& o = voids[index];
+            const double dx = periodic_distance(o.x, v.x, width_);
+            const double dz = periodic_z_ ? periodic_distance(o.z, v.z, depth_) : 0.0;
+            const double dyv = o.y - v.y;
+            const double reach = v.r + o.r + gap;
+            if (dx * dx + dyv * dyv + dz * dz < reach * reach) return false;
+          }
         }
-      }
     }
     return true;
   }
@@ -47,31 +69,49 @@ class VoidBuckets {
  private:
   int column(double x) const { return std::min(nx_ - 1, std::max(0, static_cast<int>(x / bx_))); }
   int row(double y) const { return std::min(ny_ - 1, std::max(0, static_cast<int>((y - y0_) / by_))); }
-  std::size_t bucket(double x, double y) const { return static_cast<std::size_t>(row(y)) * nx_ + column(x); }
+  int layer(double z) const { return std::min(nz_ - 1, std::max(0, static_cast<int>(z / bz_))); }
+  std::size_t key(int cx, int cy, int cz) const {
+    return (static_cast<std::size_t>(cy) * nz_ + static_cast<std::size_t>(cz)) * nx_ + static_cast<std::size_t>(cx);
+  }
+  std::size_t bucket(double x, double y, double z) const { return key(column(x), row(y), layer(z)); }
 
-  double width_, y0_, bx_ = 0, by_ = 0;
-  int nx_ = 1, ny_ = 1;
+  double width_, depth_, y0_, bx_ = 0, by_ = 0, bz_ = 0;
+  bool periodic_z_;
+  int nx_ = 1, ny_ = 1, nz_ = 1;
   std::vector<std::vector<std::size_t>> buckets_;
 };
 
-// Lattice points inside a void (periodic in x), as indices.
+// The lattice indices [lo, lo + span) a void covers on a periodic axis of n points (wrapped by the
+// caller); a void never wraps onto itself.
+struct AxisSpan {
+  int lo, span;
+};
+AxisSpan axis_span(double centre, double r, double origin, double a, int n) {
+  const int lo = static_cast<int>(std::floor((centre - r - origin) / a - 0.5));
+  const int hi = static_cast<int>(std::ceil((centre + r - origin) / a - 0.5));
+  return {lo, std::min(hi - lo + 1, n)};
+}
+
+// Lattice points inside a void (periodic in x and z), as indices.
 std::vector<std::size_t> points_inside(const Lattice& lat, const Void& v) {
   std::vector<std::size_t> out;
   const double a = lat.spacing;
   const int j_lo = std::max(0, static_cast<int>(std::floor((v.y - v.r - lat.y0) / a - 0.5)));
   const int j_hi = std::min(lat.rows - 1, static_cast<int>(std::ceil((v.y + v.r - lat.y0) / a - 0.5)));
-  const int i_lo = static_cast<int>(std::floor((v.x - v.r - lat.x0) / a - 0.5));
-  const int i_hi = static_cast<int>(std::ceil((v.x + v.r - lat.x0) / a - 0.5));
-  const int span = std::min(i_hi - i_lo + 1, lat.columns);  // a void never wraps onto itself
+  const AxisSpan xs = axis_span(v.x, v.r, lat.x0, a, lat.columns);
+  const AxisSpan zs = lat.dimension == 3 ? axis_span(v.z, v.r, 0.0, a, lat.layers) : AxisSpan{0, 1};
+  auto wrap = [](int i, int n) { return (i % n + n) % n; };
   for (int j = j_lo; j <= j_hi; ++j) {
     const double py = lat.y0 + (j + 0.5) * a;
-    for (int k = 0; k < span; ++k) {
-      const int i = ((i_lo + k) % lat.columns + lat.columns) % lat.columns;
-      const double px = lat.x0 + (i + 0.5) * a;
-      double dx = std::abs(px - v.x);
-      dx = std::min(dx, lat.width() - dx);
-      const double dy = py - v.y;
-      if (dx * dx + dy * dy < v.r * v.r) out.push_back(lat.index(i, j));
+    for (int l = 0; l < zs.span; ++l) {
+      const int k = wrap(zs.lo + l, lat.layers);
+      const double dz = lat.dimension == 3 ? periodic_distance((k + 0.5) * a, v.z, lat.depth()) : 0.0;
+      for (int m = 0; m < xs.span; ++m) {
+        const int i = wrap(xs.lo + m, lat.columns);
+        const double dx = periodic_distance(lat.x0 + (i + 0.5) * a, v.x, lat.width());
+        const double dy = py - v.y;
+        if (dx * dx + dy * dy + dz * dz < v.r * v.r) out.push_back(lat.index(i, j, k));
+      }
     }
   }
   return out;
@@ -104,7 +144,9 @@ VoidLayout seed_voids(const Lattice& lat, const VoidRequest& req, std::mt19937_6
     const double r = req.radius + req.radius_spread * (2.0 * uniform01(rng) - 1.0);
     const double x = lat.x0 + lat.width() * uniform01(rng);
     const double y = lat.y0 + r + (lat.height() - 2.0 * r) * uniform01(rng);
-    if (!req.overlap && !buckets.clear_of(out.voids, x, y, r, req.min_gap)) {
+    const double z = lat.dimension == 3 ? lat.depth() * uniform01(rng) : 0.0;
+    const Void v{x, y, r, z};
+    if (!req.overlap && !buckets.clear_of(out.voids, v, req.min_gap)) {
       if (++misses > kMaxConsecutiveMisses)
         throw VoidSeedingError("voids that cannot fit: " + describe(out.porosity(), out.voids.size()) +
                                " and then found no free place in " + std::to_string(kMaxConsecutiveMisses) +
@@ -112,7 +154,6 @@ VoidLayout seed_voids(const Lattice& lat, const VoidRequest& req, std::mt19937_6
       continue;
     }
     misses = 0;
-    const Void v{x, y, r};
     last_cut.clear();
     for (std::size_t k : points_inside(lat, v)) {
       if (out.removed[k]) continue;
@@ -150,7 +191,9 @@ VoidLayout mirror_layout(const VoidLayout& layout, const Lattice& lat) {
   for (Void& v : out.voids) v.y = -v.y;
   // Row j of the body sits at the mirror height of row rows - 1 - j of its image.
   for (int j = 0; j < lat.rows; ++j)
-    for (int i = 0; i < lat.columns; ++i) out.removed[lat.index(i, lat.rows - 1 - j)] = layout.removed[lat.index(i, j)];
+    for (int k = 0; k < lat.layers; ++k)
+      for (int i = 0; i < lat.columns; ++i)
+        out.removed[lat.index(i, lat.rows - 1 - j, k)] = layout.removed[lat.index(i, j, k)];
   return out;
 }
 

@@ -36,19 +36,59 @@ std::string expectation(const std::string& path) {
 }
 
 // Every point finite and physical; returns the number of bad points, printing the first.
-std::size_t bad_points(const Particles<2>& p, const HugoniotTemperature& thermal, double t) {
+template <int D>
+std::size_t bad_points(const Particles<D>& p, const HugoniotTemperature& thermal, double t) {
   std::size_t bad = 0;
   for (std::size_t q = 0; q < p.size(); ++q) {
     const double J = p.J(q), T = thermal.temperature(p.material_J(q), p.thermal_energy(q));
-    const bool finite = std::isfinite(p.x[q][0]) && std::isfinite(p.x[q][1]) && std::isfinite(p.v[q][0]) &&
-                        std::isfinite(p.v[q][1]) && std::isfinite(p.E[q]) && std::isfinite(p.P[q]) &&
-                        std::isfinite(p.q[q]) && std::isfinite(J);
+    bool finite = std::isfinite(p.E[q]) && std::isfinite(p.P[q]) && std::isfinite(p.q[q]) && std::isfinite(J);
+    for (int d = 0; d < D; ++d) finite = finite && std::isfinite(p.x[q][d]) && std::isfinite(p.v[q][d]);
     if (finite && J > 0 && p.density(q) > 0 && T > 0) continue;
     if (bad++ == 0)
       std::fprintf(stderr, "t = %g s: point %u: J = %g, density = %g, T = %g, E = %g, P = %g\n", t, p.id[q], J,
                    p.density(q), T, p.E[q], p.P[q]);
   }
   return bad;
+}
+
+// Steps a stable case to its end, checking every point and the conserved totals at each sample.
+template <int D>
+void run_stable(const Scene& scene) {
+  InitialState<D> initial = build_initial_state<D>(scene);
+  // symmetry = on: totals of the whole impact, whose y momentum is 0 by construction; x momentum
+  // and energy still test the step (the all-effects variants run the whole domain: conduction)
+  const MirrorImage<D> mirror = initial.mirror;
+  Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
+  const HugoniotTemperature thermal(scene.material);
+  const Totals start = mirror.whole(compute_totals(sim.particles()));
+  double worst_energy = 0, worst_momentum = 0;
+  double next = scene.sample_interval;
+  while (sim.time() < scene.end_time * (1 - 1e-12)) {
+    const double dt = std::min(sim.stable_time_step(), std::min(next, scene.end_time) - sim.time());
+    const StepStatus status = sim.step(dt);
+    if (!status.ok()) {
+      check::fail(__FILE__, __LINE__, "the run stopped: " + sim.describe(status));
+      break;
+    }
+    if (sim.time() < next * (1 - 1e-12) && sim.time() < scene.end_time * (1 - 1e-12)) continue;
+    next += scene.sample_interval;
+    const Totals now = mirror.whole(compute_totals(sim.particles()));
+    CHECK(bad_points(sim.particles(), thermal, sim.time()) == 0);
+    CHECK(now.mass == start.mass);
+    worst_momentum = std::max(worst_momentum, std::hypot(now.momentum[0], now.momentum[1], now.momentum[2]) /
+                                                  start.momentum_magnitude);
+    worst_energy = std::max(worst_energy, std::abs(now.total_energy() - start.total_energy()) / start.total_energy());
+  }
+  std::printf("%dD, %lld steps to %.4g ns, %zu points: worst relative momentum %.2e, worst relative energy error %.2e\n",
+              D, static_cast<long long>(sim.steps()), sim.time() * 1e9, sim.particles().size(), worst_momentum,
+              worst_energy);
+  // Each step's nodal forces sum to zero up to round-off, so the momentum of the symmetric impact
+  // is a sum of round-off: ~1e-16 relative per step, well under 1e-12 over 1e4 steps.
+  CHECK(worst_momentum < 1e-12);
+  // The energy update is the exact work of the step's forces, so the total changes only by the
+  // round-off of the per-point sums: ~1e-16 relative per step, ~1e-12 if it grew linearly over
+  // 1e4 steps; 1e-10 leaves a factor of 100 and still fails on any real energy error.
+  CHECK(worst_energy < 1e-10);
 }
 
 }  // namespace
@@ -63,7 +103,9 @@ int main(int argc, char** argv) {
   if (expect.rfind(" refused ", 0) == 0) {
     const std::regex pattern(expect.substr(9));
     try {
-      build_initial_state<2>(load_scene(path, overrides));
+      const Scene scene = load_scene(path, overrides);
+      if (scene.dimension == 3) build_initial_state<3>(scene);
+      else build_initial_state<2>(scene);
       check::fail(__FILE__, __LINE__, "the scene was not refused");
     } catch (const SceneError& e) {
       std::printf("refused: %s\n", e.what());
@@ -87,39 +129,7 @@ int main(int argc, char** argv) {
   }
 
   const Scene scene = load_scene(path, overrides);
-  InitialState<2> initial = build_initial_state<2>(scene);
-  // symmetry = on: totals of the whole impact, whose y momentum is 0 by construction; x momentum
-  // and energy still test the step (the all-effects variants run the whole domain: conduction)
-  const MirrorImage<2> mirror = initial.mirror;
-  Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
-  const HugoniotTemperature thermal(scene.material);
-  const Totals start = mirror.whole(compute_totals(sim.particles()));
-  double worst_energy = 0, worst_momentum = 0;
-  double next = scene.sample_interval;
-  while (sim.time() < scene.end_time * (1 - 1e-12)) {
-    const double dt = std::min(sim.stable_time_step(), std::min(next, scene.end_time) - sim.time());
-    const StepStatus status = sim.step(dt);
-    if (!status.ok()) {
-      check::fail(__FILE__, __LINE__, "the run stopped: " + sim.describe(status));
-      break;
-    }
-    if (sim.time() < next * (1 - 1e-12) && sim.time() < scene.end_time * (1 - 1e-12)) continue;
-    next += scene.sample_interval;
-    const Totals now = mirror.whole(compute_totals(sim.particles()));
-    CHECK(bad_points(sim.particles(), thermal, sim.time()) == 0);
-    CHECK(now.mass == start.mass);
-    worst_momentum = std::max(worst_momentum, std::hypot(now.momentum[0], now.momentum[1]) / start.momentum_magnitude);
-    worst_energy = std::max(worst_energy, std::abs(now.total_energy() - start.total_energy()) / start.total_energy());
-  }
-  std::printf("%lld steps to %.4g ns, %zu points: worst relative momentum %.2e, worst relative energy error %.2e\n",
-              static_cast<long long>(sim.steps()), sim.time() * 1e9, sim.particles().size(), worst_momentum,
-              worst_energy);
-  // Each step's nodal forces sum to zero up to round-off, so the momentum of the symmetric impact
-  // is a sum of round-off: ~1e-16 relative per step, well under 1e-12 over 1e4 steps.
-  CHECK(worst_momentum < 1e-12);
-  // The energy update is the exact work of the step's forces, so the total changes only by the
-  // round-off of the per-point sums: ~1e-16 relative per step, ~1e-12 if it grew linearly over
-  // 1e4 steps; 1e-10 leaves a factor of 100 and still fails on any real energy error.
-  CHECK(worst_energy < 1e-10);
+  if (scene.dimension == 3) run_stable<3>(scene);
+  else run_stable<2>(scene);
   return check::result();
 }

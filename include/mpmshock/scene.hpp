@@ -73,6 +73,8 @@ struct Scene {
   double target_height = 5e-3;
   double flyer_height = 5e-3;
   double width = 2e-3;
+  int dimension = 2;    // 2: plane strain (x, y); 3: a column periodic in x and z
+  double depth = -1.0;  // [m] the z extent in 3D; < 0: automatic, the width (see derived_depth)
   Symmetry symmetry = Symmetry::automatic;
 
   // Discretisation and time stepping
@@ -121,6 +123,11 @@ struct Scene {
   double particle_spacing() const { return cell_size / static_cast<double>(particles_per_cell); }
   // Empty space kept on the grid beyond each body's free surface.
   double derived_grid_margin() const;
+  // The z extent of a 3D column: depth, or the width when it is automatic.
+  double derived_depth() const { return depth >= 0.0 ? depth : width; }
+  // The lattice points of the material-point lattice across the column: columns in 2D, columns x
+  // layers in 3D.
+  double points_across() const;
 };
 
 // A scene error names the file, the line and the key: "scene.cfg:12: key 'porosity': ...".

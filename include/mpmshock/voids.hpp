@@ -1,5 +1,5 @@
-// Random circular voids cut from a body's lattice of material points until the porosity computed
-// from the remaining points matches the requested one.
+// Random voids cut from a body's lattice of material points until the porosity computed from the
+// remaining points matches the requested one: circular (cylinders) in 2D, spherical in 3D.
 #pragma once
 
 #include <cstdint>
@@ -11,21 +11,30 @@ namespace mpmshock {
 
 struct Void {
   double x, y, r;
+  double z = 0.0;  // 3D only
 };
 
-// A body's regular lattice of material points: point (i, j) sits at
-// (x0 + (i + 1/2) spacing, y0 + (j + 1/2) spacing); the lattice is periodic in x with period
-// columns * spacing.
+// A body's regular lattice of material points: point (i, j, k) sits at
+// (x0 + (i + 1/2) spacing, y0 + (j + 1/2) spacing, (k + 1/2) spacing); the lattice is periodic in x
+// with period columns * spacing, and in 3D in z with period layers * spacing. Points are numbered
+// row by row (y slowest), then layer, then column: the order the bodies' points are stored in.
 struct Lattice {
   double x0 = 0.0, y0 = 0.0, spacing = 0.0;
   int columns = 0, rows = 0;
+  int layers = 1;      // in z; 1 in 2D
+  int dimension = 2;   // 3: spherical voids, periodic in z too
 
-  std::size_t size() const { return static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows); }
-  std::size_t index(int i, int j) const {
-    return static_cast<std::size_t>(j) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(i);
+  std::size_t size() const {
+    return static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows) * static_cast<std::size_t>(layers);
+  }
+  std::size_t index(int i, int j, int k = 0) const {
+    return (static_cast<std::size_t>(j) * static_cast<std::size_t>(layers) + static_cast<std::size_t>(k)) *
+               static_cast<std::size_t>(columns) +
+           static_cast<std::size_t>(i);
   }
   double width() const { return columns * spacing; }
   double height() const { return rows * spacing; }
+  double depth() const { return layers * spacing; }
 };
 
 struct VoidRequest {
@@ -59,7 +68,7 @@ class VoidSeedingError : public std::runtime_error {
 };
 
 // Places voids one at a time (random sequential addition), fully inside the body in y and
-// periodic in x, until the point porosity reaches the request; keeps the last void only if that
+// periodic in x (and z in 3D), until the point porosity reaches the request; keeps the last void only if that
 // lands closer. Throws VoidSeedingError if the result is not within `tolerance` (relative).
 VoidLayout seed_voids(const Lattice& lattice, const VoidRequest& request, std::mt19937_64& rng,
                       double tolerance = 0.005);
