@@ -77,7 +77,7 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
   write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);
   const GridGeometry<D>& g = sim.grid().geo;
   const std::size_t points = sim.particles().size() + (mirror_.on() ? mirror_.flyer_points() : 0);
-  xdmf_.add({name, sim.time(), points, scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h});
+  xdmf_.add({name, sim.time(), points, scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h, D, g.nz});
 }
 
 template class Outputs<2>;

@@ -8,7 +8,12 @@ namespace mpmshock {
 const char* const kProbesHeader = "time,probe,count,x,y,velocity_x,velocity_y,pressure,density,temperature";
 
 template <int D>
-Probes<D>::Probes(const Scene& scene, const Particles<D>& p, double width) : interval_(scene.probe_interval) {
+Probes<D>::Probes(const Scene& scene, const Particles<D>& p, const GridGeometry<D>& grid)
+    : interval_(scene.probe_interval) {
+  auto periodic = [](double a, double b, double period) {
+    const double d = std::abs(a - b);
+    return std::min(d, period - d);
+  };
   double top = -std::numeric_limits<double>::infinity();
   for (std::size_t q = 0; q < p.size(); ++q)
     if (p.body[q] == Body::target) top = std::max(top, p.x[q][1]);
@@ -23,10 +28,14 @@ Probes<D>::Probes(const Scene& scene, const Particles<D>& p, double width) : int
     } else {
       double best = std::numeric_limits<double>::infinity();
       std::uint32_t nearest = 0;
+      const double z = spec.z >= 0.0 ? spec.z : 0.5 * grid.depth();  // 3D only
       for (std::size_t q = 0; q < p.size(); ++q) {
-        double dx = std::abs(p.x[q][0] - spec.x);
-        dx = std::min(dx, width - dx);  // periodic in x
-        const double d2 = dx * dx + (p.x[q][1] - spec.y) * (p.x[q][1] - spec.y);
+        const double dx = periodic(p.x[q][0], spec.x, grid.width());
+        double d2 = dx * dx + (p.x[q][1] - spec.y) * (p.x[q][1] - spec.y);
+        if constexpr (D == 3) {
+          const double dz = periodic(p.x[q][2], z, grid.depth());
+          d2 += dz * dz;
+        }
         if (d2 < best) {
           best = d2;
           nearest = p.id[q];

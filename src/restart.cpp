@@ -226,7 +226,8 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
       if (!fs::exists(p)) continue;
       try {
         const SnapshotHeader h = read_snapshot_header(p.string());
-        earlier.push_back({p.filename().string(), h.time, h.points, h.grid, grid.nx, grid.ny, grid.y_min, grid.h});
+        earlier.push_back(
+            {p.filename().string(), h.time, h.points, h.grid, grid.nx, grid.ny, grid.y_min, grid.h, D, grid.nz});
       } catch (const std::exception& e) {
         std::fprintf(stderr, "mpmshock: warning: %s is left out of %s: %s\n", p.string().c_str(), kXdmfName, e.what());
       }
@@ -234,7 +235,7 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   }
   r.run.scene_text = resolved_scene(scene);
   write_text(dir / "scene.txt", r.run.scene_text);
-  if (!fs::exists(dir / "voids.csv")) write_voids(dir / "voids.csv", r.run.flyer, r.run.target);
+  if (!fs::exists(dir / "voids.csv")) write_voids(dir / "voids.csv", r.run.flyer, r.run.target, D);
 
   // Probes and the mirror image come from the initial state, as the run made them (and only they
   // are kept of it). A snapshot holds the whole impact; with symmetry = on the target's points go on.

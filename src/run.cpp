@@ -29,7 +29,7 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
   const fs::path dir(scene.output_dir);
   const DirectoryLock lock = prepare_output_dir(scene, options.force);
   write_text(dir / "scene.txt", run.scene_text);
-  write_voids(dir / "voids.csv", run.flyer, run.target);
+  write_voids(dir / "voids.csv", run.flyer, run.target, D);
   Outputs<D> out(scene, dir, false, std::move(initial.mirror));
   out.follow(std::move(probes), sim.time(), false);
   out.probe(sim);

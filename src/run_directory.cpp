@@ -117,11 +117,14 @@ void write_text_atomically(const fs::path& path, const std::string& text) {
   fs::rename(tmp, path);
 }
 
-void write_voids(const fs::path& path, const BodySummary& flyer, const BodySummary& target) {
+void write_voids(const fs::path& path, const BodySummary& flyer, const BodySummary& target, int dimension) {
   File f = open_output(path);
-  std::fprintf(f.get(), "body,x,y,radius\n");
+  std::fprintf(f.get(), dimension == 3 ? "body,x,y,z,radius\n" : "body,x,y,radius\n");
   for (const BodySummary* b : {&flyer, &target})
-    for (const Void& v : b->voids) std::fprintf(f.get(), "%s,%.17g,%.17g,%.17g\n", b->name.c_str(), v.x, v.y, v.r);
+    for (const Void& v : b->voids) {
+      if (dimension == 3) std::fprintf(f.get(), "%s,%.17g,%.17g,%.17g,%.17g\n", b->name.c_str(), v.x, v.y, v.z, v.r);
+      else std::fprintf(f.get(), "%s,%.17g,%.17g,%.17g\n", b->name.c_str(), v.x, v.y, v.r);
+    }
   flush_or_throw(f.get(), path.string());
 }
 

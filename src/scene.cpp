@@ -534,7 +534,7 @@ RegionSpec parse_region(const Entry& e) {
   return r;
 }
 
-// A probe key: probe.NAME = surface | point X Y.
+// A probe key: probe.NAME = surface | point X Y [Z].
 ProbeSpec parse_probe(const Entry& e) {
   ProbeSpec p;
   p.name = e.key.substr(std::string("probe.").size());
@@ -542,12 +542,16 @@ ProbeSpec parse_probe(const Entry& e) {
   const auto [kind, args] = spec_words(e.value);
   if (kind == "surface" && args.empty()) {
     p.kind = ProbeSpec::Kind::surface;
-  } else if (kind == "point" && args.size() == 2) {
+  } else if (kind == "point" && (args.size() == 2 || args.size() == 3)) {
     p.kind = ProbeSpec::Kind::point;
     p.x = spec_length(e, args[0]);
     p.y = spec_length(e, args[1]);
+    if (args.size() == 3) {
+      p.z = spec_length(e, args[2]);
+      if (!(p.z >= 0.0)) throw error_at(e.at, e.key, "Z must be >= 0 (the column spans z in [0, depth))");
+    }
   } else {
-    throw error_at(e.at, e.key, "expected 'surface' or 'point X Y', got '" + e.value + "'");
+    throw error_at(e.at, e.key, "expected 'surface', 'point X Y' or, in 3D, 'point X Y Z', got '" + e.value + "'");
   }
   return p;
 }
@@ -689,6 +693,8 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
       fail("symmetry", "on cannot go with heat_conduction = on yet (conduction's nodal sums are not folded "
                        "across the plane); use symmetry = off");
   }
+  for (const ProbeSpec& p : s.probes)
+    if (p.z >= 0.0 && s.dimension != 3) fail("probe." + p.name, "a Z coordinate needs dimension = 3");
   if (s.grid_margin >= 0.0 && s.grid_margin < 2.0 * s.cell_size)
     fail("grid_margin", "must be at least two cells (or 'auto')");
   // Sizes that would not fit in memory are refused here, before anything is allocated.
@@ -841,6 +847,7 @@ std::string resolved_scene(const Scene& scene) {
     out += "probe." + p.name + " = ";
     if (p.kind == ProbeSpec::Kind::surface) out += "surface";
     else out += "point " + format_number(p.x) + " m " + format_number(p.y) + " m";
+    if (p.kind == ProbeSpec::Kind::point && p.z >= 0.0) out += " " + format_number(p.z) + " m";
     out += "\n";
   }
   return out;
@@ -868,7 +875,8 @@ std::string key_reference_markdown() {
   out += "| `region.NAME` | m | B800, B400, B100, T800, T400, T100 | `bottom Y1 H`, `top H` or `band Y1 Y2`; "
          "a scene that names regions replaces the defaults |\n";
   out += "| `probe.NAME` | m | none | `surface` (the target's free surface: its top cell of points at t = 0) or "
-         "`point X Y` (the material point nearest to X Y at t = 0), followed through the run into probes.csv |\n";
+         "`point X Y` (the material point nearest to X Y at t = 0; `point X Y Z` in 3D, Z by default mid-depth), "
+         "followed through the run into probes.csv |\n";
   return out;
 }
 

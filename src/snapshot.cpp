@@ -156,17 +156,21 @@ void write_particles(hid_t file, const Rows<D>& rows, const HugoniotTemperature*
           chosen);
 }
 
-void write_bodies(hid_t g, const RunState& run) {
+void write_bodies(hid_t g, const RunState& run, int dimension) {
   for (const BodySummary* b : {&run.target, &run.flyer}) {
     const std::string prefix = b->name + "_";
     h5::write_int_attribute(g, (prefix + "lattice_points").c_str(), static_cast<std::int64_t>(b->lattice_points));
     h5::write_int_attribute(g, (prefix + "material_points").c_str(), static_cast<std::int64_t>(b->material_points));
     h5::write_doubles_attribute(g, (prefix + "extent").c_str(), {b->y_bottom, b->y_top});
     std::vector<double> voids;
-    for (const Void& v : b->voids) voids.insert(voids.end(), {v.x, v.y, v.r});
-    const hsize_t M = b->voids.size();
-    h5::write_dataset(g, (prefix + "voids").c_str(), H5T_NATIVE_DOUBLE, voids.data(), {M, 3}, "m",
-                      "void centres x, y and radii", {1});
+    for (const Void& v : b->voids) {
+      voids.insert(voids.end(), {v.x, v.y});
+      if (dimension == 3) voids.push_back(v.z);
+      voids.push_back(v.r);
+    }
+    const hsize_t M = b->voids.size(), columns = dimension == 3 ? 4 : 3;
+    h5::write_dataset(g, (prefix + "voids").c_str(), H5T_NATIVE_DOUBLE, voids.data(), {M, columns}, "m",
+                      dimension == 3 ? "sphere centres x, y, z and radii" : "void centres x, y and radii", {1});
   }
 }
 
@@ -191,7 +195,7 @@ void write_restart(hid_t file, const Rows<D>& rows, const RunState& run) {
   h5::write_doubles_attribute(g, "initial_totals", totals);
   h5::write_string_attribute(g, "random_state",
                              "none: random numbers are drawn only at set-up (the void layout, stored here)");
-  write_bodies(g, run);
+  write_bodies(g, run, D);
   const auto reflect_deviator = [](const Deviator<D>& s) { return reflected(s); };
   h5::write_dataset(g, "volume0", H5T_NATIVE_DOUBLE, rows.field(p.V0).data(), {N}, D == 2 ? "m2" : "m3", "reference volume V0",
                     {1});
@@ -228,17 +232,23 @@ void write_grid(hid_t file, const SnapshotOptions<D>& o) {
   const std::size_t nodes = geo.nodes();
   std::vector<double> mass(nodes, 0.0);
   std::vector<std::vector<double>> velocity(D, std::vector<double>(nodes, 0.0));
+  // In the file, layer k (z) is slowest, then row j (y), then column i (x): the order of a
+  // co-rectilinear mesh in XDMF. In memory rows are slowest (grid.hpp).
+  const auto nx = static_cast<std::size_t>(geo.nx), ny = static_cast<std::size_t>(geo.ny);
   const std::size_t b = geo.row_start(o.grid_rows.begin), e = geo.row_start(o.grid_rows.end);
   for (std::size_t i = b; i < e; ++i) {
     if (!(grid.m[i] > 0.0)) continue;
-    mass[i] = grid.m[i];
-    for (int d = 0; d < D; ++d) velocity[d][i] = grid.v[i][d];
+    const std::size_t row = i / geo.nodes_per_row(), layer = (i % geo.nodes_per_row()) / nx, column = i % nx;
+    const std::size_t at = (layer * ny + row) * nx + column;
+    mass[at] = grid.m[i];
+    for (int d = 0; d < D; ++d) velocity[d][at] = grid.v[i][d];
   }
-  // Row j (y), layer k (z), column i (x) is the node at (i h, y_min + j h, k h).
-  std::vector<hsize_t> dims = {static_cast<hsize_t>(geo.ny)};
+  // Node (i, j, k) at (i h, y_min + j h, k h) is element [k][j][i] (3D) or [j][i] (2D).
+  std::vector<hsize_t> dims;
   if (D == 3) dims.push_back(static_cast<hsize_t>(geo.nz));
+  dims.push_back(static_cast<hsize_t>(geo.ny));
   dims.push_back(static_cast<hsize_t>(geo.nx));
-  h5::write_dataset(g, "mass", H5T_NATIVE_DOUBLE, mass.data(), dims, "kg/m", "nodal mass m_i", {1});
+  h5::write_dataset(g, "mass", H5T_NATIVE_DOUBLE, mass.data(), dims, D == 2 ? "kg/m" : "kg", "nodal mass m_i", {1});
   const char* names[3] = {"velocity_x", "velocity_y", "velocity_z"};
   const char* what[3] = {"nodal v_x after the last step's momentum update", "nodal v_y after the last step's momentum update",
                          "nodal v_z after the last step's momentum update"};
@@ -507,8 +517,9 @@ Restart<D> read_state(const std::string& path) {
         b->y_bottom = extent[0];
         b->y_top = extent[1];
       }
-      const std::vector<double> v = h5::read_doubles(g, (prefix + "voids").c_str(), 0, {3});
-      for (std::size_t k = 0; k + 2 < v.size(); k += 3) b->voids.push_back({v[k], v[k + 1], v[k + 2]});
+      const std::vector<double> v = h5::read_doubles(g, (prefix + "voids").c_str(), 0, {D == 3 ? 4u : 3u});
+      for (std::size_t k = 0; k + D < v.size(); k += D + 1)
+        b->voids.push_back(D == 3 ? Void{v[k], v[k + 1], v[k + 3], v[k + 2]} : Void{v[k], v[k + 1], v[k + 2]});
     }
 
     Particles<D>& p = r.points;

@@ -47,6 +47,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   result.voids = run.target.voids.size() + run.flyer.voids.size();
   result.points = sim.particles().size();
   result.symmetry = sim.model().symmetry_plane;
+  result.dimension = D;
   const std::int64_t start_steps = sim.steps();
   OutputSchedule& sch = run.schedule;
   auto take_snapshot = [&] {
@@ -137,13 +138,13 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
                "  \"end_time\": %s,\n  \"wall_seconds\": %s,\n  \"material_points\": %zu,\n"
                "  \"point_steps_per_second\": %s,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n"
                "  \"mass_error\": %s,\n  \"momentum_error\": %s,\n  \"energy_error\": %s,\n"
-               "  \"porosity\": %s,\n  \"voids\": %zu,\n  \"symmetry\": %s\n}\n",
+               "  \"porosity\": %s,\n  \"voids\": %zu,\n  \"symmetry\": %s,\n  \"dimension\": %d\n}\n",
                r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps),
                json_number(r.start_time).c_str(), json_number(r.end_time).c_str(), json_number(r.wall_seconds).c_str(),
                r.points, json_number(r.point_steps_per_second).c_str(), r.threads,
                static_cast<long long>(r.steps_with_fewer_threads), json_number(r.mass_error).c_str(),
                json_number(r.momentum_error).c_str(), json_number(r.energy_error).c_str(),
-               json_number(r.porosity).c_str(), r.voids, r.symmetry ? "true" : "false");
+               json_number(r.porosity).c_str(), r.voids, r.symmetry ? "true" : "false", r.dimension);
   flush_or_throw(f.get(), path.string());
   f.reset();
   fs::rename(tmp, path);

@@ -30,17 +30,27 @@ void attribute(std::ostringstream& x, const XdmfSnapshot& s, const char* name, c
 // only with its own rank, and functions of rank-3 inputs fail. A JOIN function reshapes without
 // copying the file's layout.
 
-// A 2 x 2 matrix per point (N x 2 x 2 in the file) presented as 4 components.
-void matrix2(std::ostringstream& x, const XdmfSnapshot& s, const char* name) {
-  x << "        <Attribute Name=\"" << name << "\" AttributeType=\"Matrix\" Center=\"Node\">\n"
-    << "          <DataItem ItemType=\"Function\" Function=\"JOIN($0)\" Dimensions=\"" << s.points << " 4\">\n";
-  data_item(x, dims(s.points, "2 2"), s.file + ":/particles/" + name, "            ");
+// A D x D matrix per point (N x D x D in the file) presented as D^2 components: a Matrix in 2D, a
+// Tensor in 3D.
+void matrix(std::ostringstream& x, const XdmfSnapshot& s, const char* name) {
+  const int d = s.dimension;
+  x << "        <Attribute Name=\"" << name << "\" AttributeType=\"" << (d == 2 ? "Matrix" : "Tensor")
+    << "\" Center=\"Node\">\n"
+    << "          <DataItem ItemType=\"Function\" Function=\"JOIN($0)\" Dimensions=\"" << s.points << " " << d * d
+    << "\">\n";
+  data_item(x, dims(s.points, std::to_string(d) + " " + std::to_string(d)), s.file + ":/particles/" + name,
+            "            ");
   x << "          </DataItem>\n        </Attribute>\n";
 }
 
-// The points' velocity (N x 2 in the file) presented as 3-vectors (v_x, v_y, 0): ParaView's glyphs
-// want three components. Each column is cut out with a hyperslab; the two and a zero are joined.
+// The points' velocity: in 3D straight from the file (N x 3); in 2D (N x 2 in the file) presented
+// as 3-vectors (v_x, v_y, 0), since ParaView's glyphs want three components: each column is cut
+// out with a hyperslab, and the two and a zero are joined.
 void point_velocity(std::ostringstream& x, const XdmfSnapshot& s) {
+  if (s.dimension == 3) {
+    attribute(x, s, "velocity", "Vector", "3");
+    return;
+  }
   const std::string n = std::to_string(s.points);
   x << "        <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n"
     << "          <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, 0 * $0)\" Dimensions=\"" << n << " 3\">\n";
@@ -53,16 +63,18 @@ void point_velocity(std::ostringstream& x, const XdmfSnapshot& s) {
   x << "          </DataItem>\n        </Attribute>\n";
 }
 
-// A grid field (ny x nx in the file) on the grid's one-node-thick 3D mesh, as a scalar or, joined
-// with a zero z component, a vector.
+// A grid field (ny x nx in the file; nz x ny x nx in 3D) on the grid's 3D mesh (one node thick in
+// 2D), as a scalar or, joined with a zero z component in 2D, a vector.
 void grid_field(std::ostringstream& x, const XdmfSnapshot& s, const char* name, std::initializer_list<const char*> parts) {
   const std::string nodes = std::to_string(s.ny) + " " + std::to_string(s.nx);
-  const bool vector = parts.size() == 2;
+  const std::string in_file = s.dimension == 3 ? std::to_string(s.nz) + " " + nodes : nodes;
+  const bool vector = parts.size() > 1;
+  const char* join = !vector ? "JOIN($0)" : parts.size() == 2 ? "JOIN($0, $1, 0 * $0)" : "JOIN($0, $1, $2)";
   x << "        <Attribute Name=\"" << name << "\" AttributeType=\"" << (vector ? "Vector" : "Scalar")
     << "\" Center=\"Node\">\n"
-    << "          <DataItem ItemType=\"Function\" Function=\"" << (vector ? "JOIN($0, $1, 0 * $0)" : "JOIN($0)")
-    << "\" Dimensions=\"1 " << nodes << (vector ? " 3" : "") << "\">\n";
-  for (const char* part : parts) data_item(x, nodes, s.file + ":/grid/" + part, "            ");
+    << "          <DataItem ItemType=\"Function\" Function=\"" << join << "\" Dimensions=\""
+    << (s.dimension == 3 ? std::to_string(s.nz) : std::string("1")) << " " << nodes << (vector ? " 3" : "") << "\">\n";
+  for (const char* part : parts) data_item(x, in_file, s.file + ":/grid/" + part, "            ");
   x << "          </DataItem>\n        </Attribute>\n";
 }
 
@@ -82,16 +94,16 @@ std::string particle_step(const XdmfSnapshot& s) {
   x << "      <Grid Name=\"" << s.file << "\" GridType=\"Uniform\">\n";
   x << "        <Time Value=\"" << s.time << "\" />\n";
   x << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.points << "\" NodesPerElement=\"1\" />\n";
-  x << "        <Geometry GeometryType=\"XY\">\n";
-  data_item(x, dims(s.points, "2"), s.file + ":/particles/position", "          ");
+  x << "        <Geometry GeometryType=\"" << (s.dimension == 3 ? "XYZ" : "XY") << "\">\n";
+  data_item(x, dims(s.points, std::to_string(s.dimension)), s.file + ":/particles/position", "          ");
   x << "        </Geometry>\n";
   for (const char* name : {"density", "pressure", "temperature", "internal_energy", "plastic_strain", "damage", "melted",
                            "viscous_pressure", "mass", "volume"})
     attribute(x, s, name, "Scalar", "");
   point_velocity(x, s);
   attribute(x, s, "stress", "Tensor", "3 3");
-  matrix2(x, s, "deformation_gradient");
-  matrix2(x, s, "velocity_gradient");
+  matrix(x, s, "deformation_gradient");
+  matrix(x, s, "velocity_gradient");
   x << "        <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n          <DataItem Dimensions=\""
     << s.points << "\" NumberType=\"UInt\" Precision=\"4\" Format=\"HDF\">" << s.file
     << ":/particles/id</DataItem>\n        </Attribute>\n";
@@ -108,17 +120,19 @@ std::string grid_step(const XdmfSnapshot& s) {
   x.precision(17);
   x << "      <Grid Name=\"" << s.file << " grid\" GridType=\"Uniform\">\n";
   x << "        <Time Value=\"" << s.time << "\" />\n";
-  // A 3D co-rectilinear mesh one node thick: dimensions, origin and spacing in z, y, x order.
-  // (ParaView lays a 2DCoRectMesh in its y-z plane.)
-  x << "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"1 " << s.ny << " " << s.nx << "\" />\n";
+  // A 3D co-rectilinear mesh (one node thick in 2D): dimensions, origin and spacing in z, y, x
+  // order. (ParaView lays a 2DCoRectMesh in its y-z plane.)
+  x << "        <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << (s.dimension == 3 ? s.nz : 1) << " " << s.ny
+    << " " << s.nx << "\" />\n";
   x << "        <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n";
   x << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">0 " << s.y_min
     << " 0</DataItem>\n";
-  x << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">1 " << s.h << " " << s.h
-    << "</DataItem>\n";
+  x << "          <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+    << (s.dimension == 3 ? s.h : 1.0) << " " << s.h << " " << s.h << "</DataItem>\n";
   x << "        </Geometry>\n";
   grid_field(x, s, "mass", {"mass"});
-  grid_field(x, s, "velocity", {"velocity_x", "velocity_y"});
+  if (s.dimension == 3) grid_field(x, s, "velocity", {"velocity_x", "velocity_y", "velocity_z"});
+  else grid_field(x, s, "velocity", {"velocity_x", "velocity_y"});
   x << "      </Grid>\n";
   return x.str();
 }

@@ -24,8 +24,8 @@ class Probes {
  public:
   Probes() = default;
   // Resolves the scene's probes on the initial points (the state every run and restart of the
-  // scene starts from); `width` is the periodic column's.
-  Probes(const Scene& scene, const Particles<D>& initial, double width);
+  // scene starts from) in the grid's periodic column.
+  Probes(const Scene& scene, const Particles<D>& initial, const GridGeometry<D>& grid);
 
   bool empty() const { return probes_.empty(); }
   // The time of the first row after time t (probe_interval 0: every step).
@@ -48,7 +48,7 @@ class Probes {
 template <int D>
 Probes<D> probes_of(const Scene& scene, const InitialState<D>& initial) {
   if (scene.probes.empty()) return {};
-  return Probes<D>(scene, initial.mirror.whole(initial.particles), initial.grid.width());
+  return Probes<D>(scene, initial.mirror.whole(initial.particles), initial.grid);
 }
 
 extern template class Probes<2>;

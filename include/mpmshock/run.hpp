@@ -34,6 +34,7 @@ struct RunResult {
   double wall_seconds = 0.0;
   std::size_t points = 0;   // simulated: with symmetry = on the target's, half the outputs' points
   bool symmetry = false;    // symmetry = on: the flyer is the target's mirror image
+  int dimension = 2;
   double point_steps_per_second = 0.0;  // of the simulated points
   int threads = 1;                           // the most threads the run used
   std::int64_t steps_with_fewer_threads = 0;  // steps the thread tuner ran with fewer (thread_tuner.hpp)

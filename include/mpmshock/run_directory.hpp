@@ -59,8 +59,8 @@ void flush_or_throw(std::FILE* f, const std::string& what);
 void write_text(const fs::path& path, const std::string& text);
 // Writes PATH.tmp and renames it over PATH.
 void write_text_atomically(const fs::path& path, const std::string& text);
-// voids.csv: body, x, y, radius per void.
-void write_voids(const fs::path& path, const BodySummary& flyer, const BodySummary& target);
+// voids.csv: body, x, y, radius per void (body, x, y, z, radius per sphere in 3D).
+void write_voids(const fs::path& path, const BodySummary& flyer, const BodySummary& target, int dimension);
 
 // The rows of a CSV (the header is not a row) whose time, the first column, is after t.
 std::size_t count_rows_after(const fs::path& path, double t);

@@ -42,12 +42,13 @@ struct RegionSpec {
 
 // A probe follows material points through the run (probes.csv):
 //   surface:  the target's free surface, the points of its top cell at t = 0
-//   point:    the material point nearest to (x, y) at t = 0
+//   point:    the material point nearest to (x, y) at t = 0 (x, y, z in 3D; z defaults to mid-depth)
 struct ProbeSpec {
   enum class Kind { surface, point };
   std::string name;
   Kind kind = Kind::surface;
   double x = 0.0, y = 0.0;
+  double z = -1.0;  // < 0: not given
 };
 
 struct Effects {

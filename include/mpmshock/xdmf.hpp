@@ -16,6 +16,8 @@ struct XdmfSnapshot {
   bool grid = false;
   int nx = 0, ny = 0;  // grid nodes when grid is true
   double y_min = 0.0, h = 0.0;
+  int dimension = 2;   // 3: points in x, y, z and a grid of nz node layers
+  int nz = 1;
 };
 
 std::string xdmf_document(const std::vector<XdmfSnapshot>& snapshots);
