@@ -93,19 +93,26 @@ void same_point_states(const mpmshock::Particles<D>& a, const mpmshock::Particle
 }
 
 // Two snapshots hold the same points (ids, bodies) at positions alike to `tol` [m].
-inline void same_snapshot(const fs::path& a_path, const fs::path& b_path, double tol) {
-  const mpmshock::Restart<2> a = mpmshock::read_snapshot<2>(a_path.string());
-  const mpmshock::Restart<2> b = mpmshock::read_snapshot<2>(b_path.string());
+template <int D>
+void same_snapshot_in(const fs::path& a_path, const fs::path& b_path, double tol) {
+  const mpmshock::Restart<D> a = mpmshock::read_snapshot<D>(a_path.string());
+  const mpmshock::Restart<D> b = mpmshock::read_snapshot<D>(b_path.string());
   CHECK(a.points.size() == b.points.size());
   double dx = 0.0;
   bool same_ids = true;
   for (std::size_t p = 0; p < a.points.size() && p < b.points.size(); ++p) {
     same_ids = same_ids && a.points.id[p] == b.points.id[p] && a.points.body[p] == b.points.body[p];
-    for (int d = 0; d < 2; ++d) dx = std::max(dx, std::abs(a.points.x[p][d] - b.points.x[p][d]));
+    for (int d = 0; d < D; ++d) dx = std::max(dx, std::abs(a.points.x[p][d] - b.points.x[p][d]));
   }
   CHECK(same_ids);
   std::printf("%s: largest position difference %.2e m\n", a_path.filename().c_str(), dx);
   CHECK(dx < tol);
+}
+inline void same_snapshot(const fs::path& a_path, const fs::path& b_path, double tol) {
+  const int d = mpmshock::read_snapshot_header(a_path.string()).dimension;
+  CHECK(mpmshock::read_snapshot_header(b_path.string()).dimension == d);
+  if (d == 3) same_snapshot_in<3>(a_path, b_path, tol);
+  else same_snapshot_in<2>(a_path, b_path, tol);
 }
 
 // Two run directories of a small porous impact, one with a shortcut and one without, alike to

@@ -1,5 +1,5 @@
 // Restart: a run to T and a run to T/2 restarted to T end in the same state, bit for bit, with one
-// thread and with two; and the results do not depend on the thread count at all. Every sum in the
+// thread and with two, in 2D and in 3D; and the results do not depend on the thread count at all. Every sum in the
 // step runs in a fixed order (strip-coloured scatter, block-ordered totals), so there is no
 // round-off that the thread count could reorder.
 #include <unistd.h>
@@ -36,11 +36,13 @@ void check_same_snapshot(const fs::path& a, const fs::path& b) {
   CHECK(h5::read_double_attribute(fa.get(), "time") == h5::read_double_attribute(fb.get(), "time"));
   CHECK(h5::read_int_attribute(fa.get(), "step") == h5::read_int_attribute(fb.get(), "step"));
   const std::size_t n = static_cast<std::size_t>(h5::read_int_attribute(fa.get(), "particle_count"));
+  const auto d = static_cast<hsize_t>(h5::read_int_attribute(fa.get(), "dimension"));
+  CHECK(h5::read_int_attribute(fb.get(), "dimension") == static_cast<std::int64_t>(d));
   const std::pair<const char*, std::vector<hsize_t>> fields[] = {
-      {"position", {2}},  {"velocity", {2}},       {"mass", {}},   {"volume", {}},
+      {"position", {d}},  {"velocity", {d}},       {"mass", {}},   {"volume", {}},
       {"density", {}},    {"pressure", {}},        {"temperature", {}}, {"internal_energy", {}},
-      {"stress", {3, 3}}, {"plastic_strain", {}},  {"deformation_gradient", {2, 2}},
-      {"velocity_gradient", {2, 2}}, {"viscous_pressure", {}}};
+      {"stress", {3, 3}}, {"plastic_strain", {}},  {"deformation_gradient", {d, d}},
+      {"velocity_gradient", {d, d}}, {"viscous_pressure", {}}};
   for (const auto& [name, tail] : fields) {
     const std::string path = std::string("/particles/") + name;
     const std::vector<double> va = h5::read_doubles(fa.get(), path.c_str(), n, tail);
@@ -50,8 +52,9 @@ void check_same_snapshot(const fs::path& a, const fs::path& b) {
       differ += std::memcmp(&va[k], &vb[k], sizeof(double)) != 0;
     if (differ) check::fail(__FILE__, __LINE__, std::string(name) + ": " + std::to_string(differ) + " values differ");
   }
-  const std::vector<double> sa = h5::read_doubles(fa.get(), "/restart/deviatoric_stress", n, {3});
-  const std::vector<double> sb = h5::read_doubles(fb.get(), "/restart/deviatoric_stress", n, {3});
+  const hsize_t components = d == 2 ? 3 : 5;
+  const std::vector<double> sa = h5::read_doubles(fa.get(), "/restart/deviatoric_stress", n, {components});
+  const std::vector<double> sb = h5::read_doubles(fb.get(), "/restart/deviatoric_stress", n, {components});
   CHECK(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(double)) == 0);
 }
 
@@ -63,15 +66,9 @@ RunResult run(const std::string& scene_file, const fs::path& out, const std::vec
   return run_scene(load_scene(scene_file, overrides), {true, true, true});  // fixed threads: test what was asked
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  if (argc < 2) return 2;
-  const std::string scene = argv[1];
-  const fs::path root = fs::temp_directory_path() / ("mpmshock_test_restart_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-
-  // Both ways of running a symmetric scene: the target alone with its mirror image, and the whole.
+// The restart and thread-count checks on one scene, both ways of running it: the target alone with
+// its mirror image, and the whole.
+void restart_checks(const std::string& scene, const fs::path& root) {
   for (const std::string symmetry : {"symmetry=on", "symmetry=off"}) {
     const std::string tag = symmetry.substr(9) + "_";
     for (int threads : {1, 2}) {
@@ -98,6 +95,17 @@ int main(int argc, char** argv) {
     check_same_snapshot(root / (tag + "whole1") / "snapshot_00002.h5", root / (tag + "whole2") / "snapshot_00002.h5");
     CHECK(slurp(root / (tag + "whole1") / "regions.csv") == slurp(root / (tag + "whole2") / "regions.csv"));
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) return 2;
+  const std::string scene = argv[1], scene_3d = argv[2];
+  const fs::path root = fs::temp_directory_path() / ("mpmshock_test_restart_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  restart_checks(scene_3d, root / "3d");
+  restart_checks(scene, root);
 
   // Restarting mid-run would discard later outputs: refused without --force, allowed with it.
   CHECK_THROWS_WITH(restart_run((root / "on_whole1" / "snapshot_00001.h5").string(), {}, {true, false}), "--force",
