@@ -5,7 +5,7 @@
 //
 // usage: mpmshock_bench [--points N] [--steps N] [--repeats N] [--threads N]
 //        mpmshock_bench threads [--repeats N]
-//        mpmshock_bench speed [--repeats N] [--max-points N]
+//        mpmshock_bench speed [--repeats N] [--max-points N] [--dimension 2|3]
 //
 // The `threads` mode measures the default scene and a 640 k-point solid scene on 1 thread, on all
 // threads, and on all threads with the thread tuner (how mpmshock runs), each on an idle machine
@@ -18,8 +18,9 @@
 // bandwidth (a STREAM triad in the same run) and the share of that bound the step reaches under a
 // model of the bytes each step must move, all with every point computed; the time to solution of
 // the whole speed scene with every point computed, with symmetry, and with symmetry and
-// skip_unreached; and the share of point-steps spent on material that nothing has reached yet
-// (ahead of the elastic precursor) when it is computed.
+// skip_unreached; the share of point-steps spent on material that nothing has reached yet
+// (ahead of the elastic precursor) when it is computed; and the same plates in 3D (a square
+// column, 2 x 2 x 2 points per cell) at 58 k, 640 k and 2.6 M points, beside 2D at as many points.
 #include <omp.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -65,7 +66,8 @@ std::string base_scene(double width) {
 }
 
 // Point-steps per second of `steps` steps of `sim`; a step that fails ends the benchmark.
-double timed_steps(Simulation<2>& sim, int steps) {
+template <int D>
+double timed_steps(Simulation<D>& sim, int steps) {
   const auto t0 = WallClock::now();
   for (int k = 0; k < steps; ++k) {
     const StepStatus s = sim.step(sim.stable_time_step());
@@ -245,15 +247,19 @@ Result in_child(Measure&& measure) {
 }
 
 // Runs the speed scene at `width` with `threads` threads in a child process (so its peak memory
-// is its own) and returns what it measured.
+// is its own) and returns what it measured. In 3D the column is `width` deep as well.
+template <int D>
 SpeedResult measure_speed(double width, int threads, int steps) {
   return in_child<SpeedResult>([&] {
     omp_set_num_threads(threads);
-    const Scene scene = speed_scene(width);
+    char depth[64];
+    std::snprintf(depth, sizeof depth, "depth=%.9g", width);
+    const Scene scene = D == 2 ? speed_scene(width)
+                               : speed_scene(width, {"symmetry=off", "skip_unreached=off", "dimension=3", depth});
     SpeedResult r;
     {
-      InitialState<2> initial = build_initial_state<2>(scene);
-      Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
+      InitialState<D> initial = build_initial_state<D>(scene);
+      Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
       r.points = sim.particles().size();
       r.layout_bytes = static_cast<double>(sim.particles().bytes_per_point());
       r.modelled_traffic = modelled_traffic(sim.particles());
@@ -302,7 +308,7 @@ double unreached_share(const Scene& scene) {
   return unreached / total;
 }
 
-int speed_mode(int repeats, double max_points) {
+int speed_mode(int repeats, double max_points, int only_dimension) {
   const int all = omp_get_max_threads();
   // Widths (5 um cells, 4 mm of material, 4 points per cell: 3200 points per cell column).
   struct Size {
@@ -314,6 +320,7 @@ int speed_mode(int repeats, double max_points) {
   sizes.erase(std::remove_if(sizes.begin(), sizes.end(),
                              [&](const Size& s) { return s.width / 5e-6 * 3200 > max_points * 1.01; }),
               sizes.end());
+  if (only_dimension == 3) sizes.clear();
   const double bandwidth = in_child<double>([] { return triad_bandwidth(5); });
   std::printf("mpmshock_bench speed: configs/speed.scene (solid plates, 5 um cells, 2 x 2 points per cell, "
               "+-1000 m/s; every point computed: symmetry and skip_unreached off), width scaled; best of %d; %d threads "
@@ -327,7 +334,7 @@ int speed_mode(int repeats, double max_points) {
     for (int threads : {1, all}) {
       SpeedResult best;
       for (int r = 0; r < repeats; ++r) {
-        const SpeedResult m = measure_speed(size.width, threads, size.steps);
+        const SpeedResult m = measure_speed<2>(size.width, threads, size.steps);
         if (m.rate > best.rate) best = m;
       }
       const double bound = bandwidth / best.modelled_traffic;  // point-steps/s if only bandwidth counted
@@ -337,6 +344,34 @@ int speed_mode(int repeats, double max_points) {
       std::fflush(stdout);
       if (all == 1) break;
     }
+  // 3D: the same plates in a square column (width = depth), 2 x 2 x 2 points per cell: 1600 points
+  // per (2.5 um)^2 of cross-section.
+  std::vector<Size> sizes_3d = {{"58 k", 15e-6, 100}, {"640 k", 50e-6, 10}, {"2.6 M", 100e-6, 3}};
+  sizes_3d.erase(std::remove_if(sizes_3d.begin(), sizes_3d.end(),
+                                [&](const Size& s) { return std::pow(s.width / 2.5e-6, 2) * 1600 > max_points * 1.01; }),
+                 sizes_3d.end());
+  if (only_dimension == 2) sizes_3d.clear();
+  std::printf("\n3D: the speed scene in a column as deep as it is wide, 2 x 2 x 2 points per cell (27-node stencils), "
+              "every point computed\n\n");
+  std::printf("| points | threads | point-steps/s (M) | ns per point-step | bytes/point (peak RSS) | "
+              "bytes/point (layout) | cost per point-step vs 2D at the nearest size |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  for (const Size& size : sizes_3d)
+    for (int threads : {1, all}) {
+      SpeedResult best, best_2d;
+      for (int r = 0; r < repeats; ++r) {  // 2D beside it at the same number of points, interleaved
+        const SpeedResult m = measure_speed<3>(size.width, threads, size.steps);
+        if (m.rate > best.rate) best = m;
+        const double width_2d = std::round(static_cast<double>(m.points) / 3200.0) * 5e-6;
+        const SpeedResult m2 = measure_speed<2>(std::max(width_2d, 15e-6), threads, size.steps * 3);
+        if (m2.rate > best_2d.rate) best_2d = m2;
+      }
+      std::printf("| %zu | %d | %.2f | %.1f | %.0f | %.0f | %.2f |\n", best.points, threads, best.rate / 1e6,
+                  1e9 / best.rate, best.peak_bytes / best.points, best.layout_bytes, best_2d.rate / best.rate);
+      std::fflush(stdout);
+      if (all == 1) break;
+    }
+  if (only_dimension == 3) return 0;
   // Time to solution: the whole speed scene to 250 ns, every point computed, then with each shortcut.
   std::printf("\ntime to solution: configs/speed.scene (640 k points) to 250 ns, %d threads\n\n", all);
   std::printf("| settings | points simulated | steps | wall time (s) | speed-up |\n|---|---|---|---|---|\n");
@@ -379,11 +414,13 @@ int main(int argc, char** argv) {
   if (argc >= 2 && !std::strcmp(argv[1], "speed")) {
     int repeats = 2;
     double max_points = 1e7;
+    int only_dimension = 0;
     for (int i = 2; i + 1 < argc; i += 2) {
       if (!std::strcmp(argv[i], "--repeats")) repeats = std::max(1, std::atoi(argv[i + 1]));
       else if (!std::strcmp(argv[i], "--max-points")) max_points = std::atof(argv[i + 1]);
+      else if (!std::strcmp(argv[i], "--dimension")) only_dimension = std::atoi(argv[i + 1]);
     }
-    return speed_mode(repeats, max_points);
+    return speed_mode(repeats, max_points, only_dimension);
   }
   double width = 500e-6;
   int steps = 200, repeats = 3;
