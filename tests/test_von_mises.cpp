@@ -12,33 +12,28 @@
 
 using namespace mpmshock;
 
-int main() {
-  Material al;
-  const double G = al.shear_modulus(), H = al.plastic_modulus();
-  CHECK_REL(G, 69e9 / (2 * 1.33), 1e-14);
-  CHECK_REL(H, 69e9 * 384e6 / (69e9 - 384e6), 1e-14);
-
-  // Inside the surface: nothing changes.
-  {
-    const VonMises<true> vm(al);
-    Deviator<2> s{50e6, -30e6, 10e6}, alpha;
-    double eps_p = 0.0;
-    const Deviator<2> before = s;
-    CHECK(vm.return_map(s, alpha, eps_p) == 0.0);
-    CHECK(s.xx == before.xx && s.yy == before.yy && s.xy == before.xy && eps_p == 0.0);
-  }
-  std::mt19937_64 rng(7);
+// Random trial states outside the surface, for each hardening split: the radial return lands on
+// the moved, grown surface with the closed-form plastic strain.
+template <int D>
+Deviator<D> random_deviator(std::mt19937_64& rng, double scale) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
+  if constexpr (D == 2) return {scale * u(rng), scale * u(rng), scale * u(rng)};
+  else return {scale * u(rng), scale * u(rng), scale * u(rng), scale * u(rng), scale * u(rng)};
+}
+
+template <int D>
+void return_mapping(Material al, std::mt19937_64& rng) {
+  const double G = al.shear_modulus(), H = al.plastic_modulus();
   for (double beta : {1.0, 0.5, 0.0}) {
     al.hardening_beta = beta;
     const VonMises<true> vm(al);
     for (int trial = 0; trial < 200; ++trial) {
-      Deviator<2> alpha{20e6 * u(rng), 20e6 * u(rng), 20e6 * u(rng)};
-      Deviator<2> s = alpha + Deviator<2>{400e6 * u(rng), 400e6 * u(rng), 400e6 * u(rng)};
+      Deviator<D> alpha = random_deviator<D>(rng, 20e6);
+      Deviator<D> s = alpha + random_deviator<D>(rng, 400e6);
       double eps_p = 0.01;  // already hardened: sigma_Y = sigma_Y0 + beta H eps_p
       const double sy0 = vm.yield_radius(eps_p);
       CHECK_REL(sy0, 120e6 + beta * H * 0.01, 1e-15);
-      const Deviator<2> trial_xi = s - alpha, alpha0 = alpha;
+      const Deviator<D> trial_xi = s - alpha, alpha0 = alpha;
       const double q_trial = equivalent_stress(trial_xi);
       const double deps = vm.return_map(s, alpha, eps_p);
       const double sy = vm.yield_radius(eps_p);
@@ -58,11 +53,34 @@ int main() {
       const double step = (1 - beta) * (2.0 / 3.0) * H * std::sqrt(1.5) * deps;
       CHECK_NEAR(alpha.xx - alpha0.xx, step * trial_xi.xx / n_norm, 1e-6);
       CHECK_NEAR(alpha.xy - alpha0.xy, step * trial_xi.xy / n_norm, 1e-6);
+      if constexpr (D == 3) CHECK_NEAR(alpha.yz() - alpha0.yz(), step * trial_xi.yz() / n_norm, 1e-6);
       // Radial: the final s - alpha is parallel to the trial one.
-      const Deviator<2> xi = s - alpha;
+      const Deviator<D> xi = s - alpha;
       CHECK_NEAR(xi.xx * trial_xi.yy - xi.yy * trial_xi.xx, 0.0, 1e-6 * xi.norm2() + 1.0);
+      if constexpr (D == 3) CHECK_NEAR(xi.zx() * trial_xi.xy - xi.xy * trial_xi.zx(), 0.0, 1e-6 * xi.norm2() + 1.0);
     }
   }
+}
+
+int main() {
+  Material al;
+  const double G = al.shear_modulus(), H = al.plastic_modulus();
+  CHECK_REL(G, 69e9 / (2 * 1.33), 1e-14);
+  CHECK_REL(H, 69e9 * 384e6 / (69e9 - 384e6), 1e-14);
+
+  // Inside the surface: nothing changes.
+  {
+    const VonMises<true> vm(al);
+    Deviator<2> s{50e6, -30e6, 10e6}, alpha;
+    double eps_p = 0.0;
+    const Deviator<2> before = s;
+    CHECK(vm.return_map(s, alpha, eps_p) == 0.0);
+    CHECK(s.xx == before.xx && s.yy == before.yy && s.xy == before.xy && eps_p == 0.0);
+  }
+  std::mt19937_64 rng(7);
+  return_mapping<2>(al, rng);
+  return_mapping<3>(al, rng);  // with yz and zx shear: the 3D deviator
+  al.hardening_beta = 0.0;  // the checks below were written after the 2D loop left beta at 0
 
   // Objectivity: a pure spin rotates s without changing its invariants. The Hughes-Winget step
   // keeps ||s|| to round-off at any step size (forward Euler grew it by sqrt(1 + 4 (w dt)^2) per
