@@ -38,7 +38,7 @@ Particles<D> final_state(const Scene& scene) {
 void one_point_thick_is_plane_strain(const char* shape) {
   const std::string text = std::string("velocity = 1000 m/s\nporosity = 1\nwidth = 40 um\ntarget_height = 0.2 mm\n"
                                        "flyer_height = 0.2 mm\ncell_size = 10 um\nparticles_per_cell = 1\n"
-                                       "end_time = 100 ns\nshape_function = ") + shape + "\n";
+                                       "end_time = 100 ns\ncfl = 0.3\nshape_function = ") + shape + "\n";
   const Particles<2> p2 = final_state<2>(parse_scene(text, "column", {"dimension=2"}));
   const Particles<3> p3 = final_state<3>(parse_scene(text, "column", {"dimension=3", "depth=10um"}));
   CHECK(p2.size() == p3.size());

@@ -83,7 +83,7 @@ struct Scene {
   std::int64_t particles_per_cell = 2;
   double grid_margin = -1.0;  // < 0: automatic (see derived_grid_margin)
   double end_time = 1e-6;
-  double cfl = 0.3;
+  double cfl = -1.0;  // < 0 until parsed: automatic, kCfl2D or kCfl3D by dimension
   UpdateScheme update_scheme = UpdateScheme::musl;
   ShapeFunction shape_function = ShapeFunction::bspline2;
   double spall_strength = 1.2e9;  // [Pa] tension at which a point fails (spall = on)
@@ -130,6 +130,10 @@ struct Scene {
   // layers in 3D.
   double points_across() const;
 };
+
+// The default Courant numbers: the largest measured stable in jetting porous runs, with a margin
+// (docs/stability.md): 2D was unstable above 0.5; 3D at 0.25 (a spherical collapse focuses more).
+constexpr double kCfl2D = 0.3, kCfl3D = 0.2;
 
 // A scene error names the file, the line and the key: "scene.cfg:12: key 'porosity': ...".
 class SceneError : public std::runtime_error {

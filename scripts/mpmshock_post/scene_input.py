@@ -118,16 +118,16 @@ def scene_differences(resolved, requested, defaults, ignore=("output_dir",)):
     the request would resolve to: the requested value where the request names the key, else the
     --keys default. Returns a list of 'key: have X, want Y' texts, empty when the run matches.
 
-    `ignore` lists keys that only say where output goes. grid_margin = auto and symmetry = auto are
-    derived from other keys (cell_size, velocity, end_time; the bodies and heat_conduction), which
-    are compared, so their resolved values are not. Probes
+    `ignore` lists keys that only say where output goes. grid_margin, symmetry, cfl and depth =
+    auto are derived from other keys (cell_size, velocity, end_time; the bodies and heat_conduction;
+    dimension; width), which are compared, so their resolved values are not. Probes
     (probe.NAME, probe_interval) only add probes.csv, which nothing here reads: not compared."""
     differences = []
     keys = [key for key in dict.fromkeys([*defaults, *requested, *resolved])
             if key not in ignore and not key.startswith(("region.", "probe.")) and key != "probe_interval"]
     for key in keys:
         want = requested.get(key, defaults.get(key))
-        if key in ("grid_margin", "symmetry") and want == "auto":
+        if key in ("grid_margin", "symmetry", "cfl", "depth") and want == "auto":
             continue
         if key not in resolved and key in defaults and _same(want, defaults[key]):
             continue  # a run of an earlier simulator without this key, which behaved as its default
