@@ -266,11 +266,21 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
 
 }  // namespace
 
+// The dimension a snapshot says it holds; 2 where it cannot be read, so that the full read that
+// follows reports what is wrong with the file as it always has.
+int snapshot_dimension(const std::string& snapshot) {
+  try {
+    return read_snapshot_header(snapshot).dimension;
+  } catch (const std::exception&) {
+    return 2;
+  }
+}
+
 RunResult restart_run(const std::string& snapshot, const std::vector<std::string>& overrides,
                       const RunOptions& options) {
   check_restart_overrides(snapshot, overrides);
-  return read_snapshot_header(snapshot).dimension == 3 ? restart_from<3>(snapshot, overrides, options)
-                                                        : restart_from<2>(snapshot, overrides, options);
+  return snapshot_dimension(snapshot) == 3 ? restart_from<3>(snapshot, overrides, options)
+                                           : restart_from<2>(snapshot, overrides, options);
 }
 
 namespace {
@@ -292,8 +302,8 @@ std::string check_restart_in(const std::string& snapshot, const std::vector<std:
 
 std::string check_restart(const std::string& snapshot, const std::vector<std::string>& overrides) {
   check_restart_overrides(snapshot, overrides);
-  return read_snapshot_header(snapshot).dimension == 3 ? check_restart_in<3>(snapshot, overrides)
-                                                        : check_restart_in<2>(snapshot, overrides);
+  return snapshot_dimension(snapshot) == 3 ? check_restart_in<3>(snapshot, overrides)
+                                           : check_restart_in<2>(snapshot, overrides);
 }
 
 }  // namespace mpmshock

@@ -481,6 +481,12 @@ Restart<D> read_state(const std::string& path) {
     Restart<D> r;
     RunState& run = r.run;
     run.scene_text = h5::read_string_attribute(f, "scene");
+    // The scene it ran says the same (no dimension line: a 2D run of an mpmshock before 3D).
+    const auto line = ("\n" + run.scene_text).find("\ndimension = ");
+    const int scene_dimension = line == std::string::npos ? 2 : run.scene_text[line + 12] - '0';
+    if (scene_dimension != D)
+      throw std::runtime_error("a " + std::to_string(D) + "D snapshot by its dimension attribute, but its scene says " +
+                               "dimension = " + std::to_string(scene_dimension));
     run.clock.time = h5::read_double_attribute(f, "time");
     run.clock.steps = h5::read_int_attribute(f, "step");
     const std::int64_t count = h5::read_int_attribute(f, "particle_count");
