@@ -10,16 +10,17 @@ import sys
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 
 from . import timeseries
 from .compare import plot_compare
 from .errors import PostError, argument_type
-from .field import plot_field
+from .field import plot_field, slice_points
 from .hist import moments_table, plot_histograms
 from .probes import PROBE_QUANTITIES, plot_probes
 from .reader import Run
 from .style import FORMATS, save_figure
-from .units import parse_time
+from .units import parse_length, parse_time
 
 _UNITS = ("Units as in the paper: density g/cm3, pressure GPa, temperature K, velocity m/s, "
           "time ns, length um, squared rotation/divergence/strain rate 1/ns^2.")
@@ -60,6 +61,15 @@ def _colormap(name):
     if name not in matplotlib.colormaps:
         raise PostError(f"no matplotlib colour map '{name}' (e.g. turbo, viridis, inferno, coolwarm)")
     return name
+
+
+def _slice(text):
+    """('z', metres) from 'z=50um', 'z=0.05mm' or 'z=5e-5' (a bare number is in metres)."""
+    axis, sep, value = text.partition("=")
+    if not sep or axis.strip() != "z":
+        raise PostError(f"slice '{text}': give z=VALUE, e.g. z=50um (only slices at a plane of constant z, "
+                        "drawn in the x-y plane, are supported)")
+    return "z", parse_length(value)
 
 
 def _times(text):
@@ -111,7 +121,7 @@ def build_parser():
          "(paper Fig. 5, 10)", [common, over_time])
 
     field = kind("field", "one snapshot coloured by a local quantity, optionally with velocity arrows "
-                 "(paper Fig. 1, 3, 6)", [common])
+                 "(paper Fig. 1, 3, 6); of a 3D run, the slice of points at a plane of constant z", [common])
     which = field.add_mutually_exclusive_group()
     which.add_argument("--snapshot", type=int, metavar="INDEX",
                        help="snapshot number NNNNN of snapshot_NNNNN.h5; negative counts from the end "
@@ -119,8 +129,8 @@ def build_parser():
     which.add_argument("--time", type=_argument(parse_time), metavar="T",
                        help="the snapshot nearest T, e.g. 750ns or 1.15us")
     field.add_argument("--color", default="density",
-                       help="density, pressure, temperature, velocity_x, velocity_y, speed, rot2, div2, "
-                       "strain_rate2, plastic_strain, damage, ... (default density)")
+                       help="density, pressure, temperature, velocity_x, velocity_y, velocity_z (3D), speed, "
+                       "rot2, div2, strain_rate2, plastic_strain, damage, ... (default density)")
     field.add_argument("--arrows", action="store_true", help="draw velocity arrows")
     field.add_argument("--arrow-scale", type=float, metavar="UM_PER_MPS",
                        help="arrow length in um per m/s of velocity (default: a typical speed is one "
@@ -140,6 +150,11 @@ def build_parser():
     field.add_argument("--true-size", action="store_true",
                        help="draw each point as a square of its current area, so that unclosed slits "
                        "show (default: slightly enlarged squares that tile compressed material)")
+    field.add_argument("--slice", type=_argument(_slice), metavar="z=Z",
+                       help="3D runs only: draw the points within half a point spacing "
+                       "a = cell_size / particles_per_cell of the plane z = Z, i.e. Z - a/2 <= z < Z + a/2 "
+                       "periodic in z, in the x-y plane; Z with a unit (z=50um, z=0.05mm) or in metres "
+                       "(default for 3D runs: mid-depth, moved to the nearest layer of initial points)")
 
     hist = kind("hist", "distributions of density, pressure, temperature and velocity in one region "
                 "at given times, with the Gaussian of the same mean and deviation; prints skewness and "
@@ -208,10 +223,28 @@ def _series(args):
 def _field(args):
     run = Run(args.run_dir)
     snapshot = run.snapshot(time=args.time) if args.time is not None else run.snapshot(args.snapshot)
+    slice_z = None
+    if args.slice is not None:
+        if snapshot.dimension != 3:
+            raise PostError(f"--slice {args.slice[0]}=...: {run.path} is a 2D run (dimension = 2, plane strain); "
+                            "its points already lie in the x-y plane, --slice is for 3D runs (dimension = 3)")
+        slice_z = args.slice[1]
+    if snapshot.dimension == 3:
+        slab = slice_points(snapshot, slice_z)
+        print(f"{slab.describe()} (z0 - a/2 <= z < z0 + a/2, periodic in z): "
+              f"{int(slab.inside.sum())} of {len(slab.inside)} points")
+        a = 2.0 * slab.half
+        layer = (np.floor(slab.z / a) + 0.5) * a  # the initial layer of points whose spacing holds z0
+        if abs(slab.z - layer) > 0.25 * a:
+            below, above = (layer, layer + a) if slab.z > layer else (layer - a, layer)
+            print(f"note: z = {slab.z * 1e6:.4g} µm lies between the layers of points at "
+                  f"{below % slab.depth * 1e6:.4g} and {above % slab.depth * 1e6:.4g} µm; the slice may hold "
+                  f"parts of both (--slice z={layer * 1e6:.4g}um takes one whole layer)")
+        slice_z = slab.z
     fig = plot_field(snapshot, color=args.color, arrows=args.arrows, arrow_scale=args.arrow_scale,
                      window_um=args.window, body=args.body, clim=args.clim, cmap=args.cmap,
                      title=args.title, run_name=run.name, unit=args.unit, length_unit_um=args.length_unit,
-                     true_size=args.true_size)
+                     true_size=args.true_size, slice_z=slice_z)
     return fig, f"field_{args.color}_{snapshot.index:05d}", run.path
 
 

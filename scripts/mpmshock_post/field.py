@@ -3,7 +3,16 @@
 Every material point is drawn as a square of its current area (sqrt of its volume per metre of
 depth), so compressed material looks continuous and voids show as gaps, and the scatter is
 rasterized so that 200k points stay fast and small in PDF/SVG as well.
+
+A 3D run (a column periodic in x and z) is shown as a slice in the x-y plane: the points whose z
+lies within half a lattice spacing a = cell_size / particles_per_cell of the plane z = z0, i.e.
+z0 - a/2 <= z < z0 + a/2 counted periodically in z, one layer of the initial lattice thick. By
+default z0 is mid-depth, moved to the nearest plane of initial point centres ((k + 1/2) a), so
+that the slice holds one whole layer rather than parts of two. Arrows show the in-plane velocity
+(u_x, u_y); `speed` is |u| with u_z.
 """
+
+from typing import NamedTuple
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -27,14 +36,73 @@ def _axes_size(width_um, height_um, longest_in=8.0):
     return longest_in, longest_in * height_um / width_um
 
 
-def _select(snapshot, body, window_um):
-    """Indices of the points of the chosen body inside the window (um), and the window itself."""
-    xy = snapshot["position"] * LENGTH_FACTOR
-    keep = np.ones(len(xy), dtype=bool)
+class Slice(NamedTuple):
+    """The slab of a 3D snapshot that a field plot shows: z0 - half <= z < z0 + half, periodic in z."""
+    z: float            # m, the plane
+    half: float         # m, half the slab's thickness: half a lattice spacing
+    depth: float        # m, the period in z
+    inside: np.ndarray  # bool per point of the snapshot
+
+    def describe(self):
+        return f"slice z = {self.z * LENGTH_FACTOR:.4g} µm ± {self.half * LENGTH_FACTOR:.3g} µm"
+
+
+def point_spacing(snapshot):
+    """Spacing a of the initial material-point lattice in m: cell_size / particles_per_cell from
+    the scene, else the edge of the median reference volume V / det F."""
+    a = snapshot.scene.point_spacing if snapshot.scene is not None else None
+    if a:
+        return a
+    volume = snapshot["volume"]
+    if "deformation_gradient" in snapshot.fields:
+        volume = volume / np.linalg.det(snapshot["deformation_gradient"])
+    return float(np.median(volume)) ** (1.0 / snapshot.dimension)
+
+
+def column_depth(snapshot):
+    """z extent of a 3D column in m: the scene's depth (its width for 'auto')."""
+    depth = snapshot.scene.depth if snapshot.scene is not None else None
+    if not depth:
+        raise PostError(f"{snapshot.path} states no scene, so the depth of its column is unknown")
+    return depth
+
+
+def default_slice_z(snapshot):
+    """Mid-depth, moved to the nearest plane of initial point centres (k + 1/2) a (upwards on a
+    tie), so that the default slice holds one whole lattice layer."""
+    a, depth = point_spacing(snapshot), column_depth(snapshot)
+    layers = max(1, int(round(depth / a)))
+    return (min(int(np.floor(0.5 * depth / a + 1e-6)), layers - 1) + 0.5) * a
+
+
+def slice_points(snapshot, z=None):
+    """The Slice of a 3D snapshot at the plane z (m; default: default_slice_z). 2D snapshots
+    have no slices: their points already lie in the x-y plane."""
+    if snapshot.dimension != 3:
+        raise PostError(f"{snapshot.path} is from a 2D run (plane strain): its points lie in the x-y plane "
+                        "already, a z slice needs a 3D run (dimension = 3)")
+    a, depth = point_spacing(snapshot), column_depth(snapshot)
+    if z is None:
+        z = default_slice_z(snapshot)
+    elif not 0.0 <= z <= depth:
+        raise PostError(f"slice z = {z:g} m ({z * LENGTH_FACTOR:g} µm) lies outside the column, which spans z "
+                        f"from 0 to {depth * LENGTH_FACTOR:g} µm (a bare number is in metres: write e.g. "
+                        f"z={0.5 * depth * LENGTH_FACTOR:g}um)")
+    half = 0.5 * a
+    dz = np.mod(snapshot["position"][:, 2] - z + 0.5 * depth, depth) - 0.5 * depth
+    return Slice(float(z), half, depth, (dz >= -half) & (dz < half))
+
+
+def _select(snapshot, body, window_um, slab=None):
+    """Indices of the points of the chosen body (and slab, in 3D) inside the window (um), and the
+    window itself."""
+    xy = snapshot["position"][:, :2] * LENGTH_FACTOR
+    keep = np.ones(len(xy), dtype=bool) if slab is None else slab.inside.copy()
     if body != "all":
         keep &= snapshot["body"] == _BODIES[body]
     if not keep.any():
-        raise PostError(f"{snapshot.path} has no {body} points")
+        where = "" if slab is None else f" in the {slab.describe()}"
+        raise PostError(f"{snapshot.path} has no {'' if body == 'all' else body + ' '}points{where}")
     if window_um is None:
         x0, x1 = xy[keep, 0].min(), xy[keep, 0].max()
         y0, y1 = xy[keep, 1].min(), xy[keep, 1].max()
@@ -43,7 +111,7 @@ def _select(snapshot, body, window_um):
         if x1 <= x0 or y1 <= y0:
             raise PostError(f"window {x0:g},{x1:g},{y0:g},{y1:g} um: need X0 < X1 and Y0 < Y1")
     # Points just outside still reach into the window with their squares.
-    pad = 2.0 * np.sqrt(np.median(snapshot["volume"])) * LENGTH_FACTOR
+    pad = 2.0 * np.median(snapshot["volume"]) ** (1.0 / snapshot.dimension) * LENGTH_FACTOR
     keep &= (xy[:, 0] >= x0 - pad) & (xy[:, 0] <= x1 + pad) & (xy[:, 1] >= y0 - pad) & (xy[:, 1] <= y1 + pad)
     if not keep.any():
         raise PostError(f"no {'' if body == 'all' else body + ' '}points in the window "
@@ -66,7 +134,7 @@ def _draw_arrows(ax, xy, velocity, window, arrow_scale, key_xy):
     without every other arrow shrinking to a dot."""
     sample, spacing = _arrow_sample(xy, window, _ARROWS_ACROSS)
     u = velocity[sample]
-    speed = np.hypot(u[:, 0], u[:, 1])
+    speed = np.hypot(u[:, 0], u[:, 1])  # in the plane of the plot
     reference = float(f"{np.percentile(speed, 90):.1g}")
     if arrow_scale is None:
         arrow_scale = 0.8 * spacing / max(reference, 1e-30)
@@ -83,8 +151,19 @@ def _marker_side_um(snapshot, points, true_size=False):
     where the material is compressed along y but stretched along x; the cap at twice the initial
     spacing keeps strongly distorted points at collapsing voids from covering their neighbours.
     `true_size`: squares of the current area exactly, so that slits narrower than a point (voids
-    not yet closed) stay visible as seams."""
+    not yet closed) stay visible as seams. In 3D the initial cube has side cbrt(V0); its extent in
+    x and y includes what F turns out of z, and its true size is the area of its deformed x-y face."""
     volume = snapshot["volume"][points]
+    if snapshot.dimension == 3:
+        if "deformation_gradient" not in snapshot.fields:
+            return (1.0 if true_size else 1.1) * np.cbrt(volume) * LENGTH_FACTOR
+        F = snapshot["deformation_gradient"][points]
+        side0 = np.cbrt(volume / np.linalg.det(F))
+        if true_size:
+            in_plane = np.abs(F[:, 0, 0] * F[:, 1, 1] - F[:, 0, 1] * F[:, 1, 0])
+            return side0 * np.sqrt(in_plane) * LENGTH_FACTOR
+        extent = np.maximum(np.abs(F[:, 0, :]).sum(axis=1), np.abs(F[:, 1, :]).sum(axis=1))
+        return 1.1 * side0 * np.clip(extent, 1.0, 2.0) * LENGTH_FACTOR
     if true_size:
         return np.sqrt(volume) * LENGTH_FACTOR
     if "deformation_gradient" not in snapshot.fields:
@@ -105,19 +184,22 @@ def robust_limits(values):
 
 def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window_um=None, body="all",
                clim=None, cmap="turbo", title=None, run_name=None, unit=None, length_unit_um=1.0,
-               true_size=False):
+               true_size=False, slice_z=None):
     """The material points of a snapshot coloured by `color` in the paper's units.
 
     window_um: (x0, x1, y0, y1) in um, default the whole chosen body; body: 'all', 'target' or
     'flyer'; clim: colour limits in display units (default: the central 99% of the points; 0 to 1
     for damage); arrow_scale: um of arrow per m/s; unit: another display unit for the colour
     (pressure in MPa as the paper's Fig. 1); length_unit_um: the axes' length unit in um (10 as
-    the paper's Fig. 1); true_size: points drawn at their current area (see _marker_side_um).
+    the paper's Fig. 1); true_size: points drawn at their current area (see _marker_side_um);
+    slice_z: in 3D, the plane z (m) whose slab of points is drawn (see slice_points; default
+    mid-depth); refused for a 2D snapshot.
     """
     q = quantity(color, unit)
     values = local_quantity(snapshot, color) * q.factor
-    points, window_um = _select(snapshot, body, window_um)
-    xy = snapshot["position"][points] * (LENGTH_FACTOR / length_unit_um)
+    slab = slice_points(snapshot, slice_z) if snapshot.dimension == 3 or slice_z is not None else None
+    points, window_um = _select(snapshot, body, window_um, slab)
+    xy = snapshot["position"][points, :2] * (LENGTH_FACTOR / length_unit_um)
     window = tuple(edge / length_unit_um for edge in window_um)
     values = values[points]
     if np.all(np.isnan(values)):
@@ -146,7 +228,7 @@ def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window
     if arrows:
         key_xy = ((m["left"] + ax_w + 0.25) / fig_w, (m["bottom"] + ax_h + 0.12) / fig_h)
         scale = None if arrow_scale is None else arrow_scale / length_unit_um
-        _draw_arrows(ax, xy, snapshot["velocity"][points], window, scale, key_xy)
+        _draw_arrows(ax, xy, snapshot["velocity"][points, :2], window, scale, key_xy)
 
     length = "µm" if length_unit_um == 1.0 else f"{length_unit_um:g} µm"
     ax.set_xlabel(f"$x$ ({length})")
@@ -155,5 +237,7 @@ def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window
         case = case_label(snapshot.scene) if snapshot.scene is not None else ""
         joiner = ": " if ax_w >= 4.0 else "\n"  # a narrow column: one item a line, clear of the arrow key
         title = joiner.join(part for part in (run_name, case) if part) + f"\nt = {snapshot.time * TIME.factor:.4g} ns"
+        if slab is not None:
+            title += (", " if ax_w >= 4.0 else "\n") + slab.describe()
     ax.set_title(title, fontsize=10, loc="left")
     return fig

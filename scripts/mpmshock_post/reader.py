@@ -7,6 +7,11 @@
     snap = run.snapshot(time=750e-9)
     rho = snap["density"]            # kg/m3, one value per material point
     region_stats(snap, "B800")       # the regions.csv row, recomputed from the snapshot
+    run.dimension, snap.dimension    # 2 (plane strain) or 3 (a column periodic in x and z)
+
+In 3D (`dimension = 3`) positions and velocities are N x 3 (x, y, z), the deformation and velocity
+gradients 3 x 3, extensive quantities whole (kg, m3) rather than per metre of depth, and voids()
+has a z column (sphere centres); everything else reads as in 2D.
 
 Snapshots are read lazily: opening one reads its attributes, and each dataset is read the first
 time it is asked for. Datasets and groups the reader does not know are ignored, so files from a
@@ -143,6 +148,16 @@ class Snapshot:
         return self.fields[name]
 
     @property
+    def dimension(self):
+        """2 or 3: the file's `dimension` attribute; for files without it, the columns of
+        /particles/position (2 in the files written before 3D runs)."""
+        if "dimension" in self.attrs:
+            return int(self.attrs["dimension"])
+        if "position" in self.fields and len(self.fields.shape("position")) == 2:
+            return int(self.fields.shape("position")[1])
+        return self.scene.dimension if self.scene is not None else 2
+
+    @property
     def particle_count(self):
         if "particle_count" in self.attrs:
             return int(self.attrs["particle_count"])
@@ -178,6 +193,11 @@ class Run:
     def name(self):
         return self.path.resolve().name
 
+    @property
+    def dimension(self):
+        """2 (plane strain) or 3 (a column periodic in x and z), from the scene."""
+        return self.scene.dimension
+
     def regions(self):
         """Region name -> {column -> array} from regions.csv, regions in file order, SI units."""
         path = self.path / "regions.csv"
@@ -211,9 +231,16 @@ class Run:
         return _columns(path, *_read_csv(path), int_columns=("step",))
 
     def voids(self):
-        """Column -> array from voids.csv: body ('flyer'/'target'), x, y, radius (m), initial layout."""
+        """Column -> array from voids.csv, the initial layout: body ('flyer'/'target'), x, y,
+        radius (m) of each cylindrical void in 2D; body, x, y, z, radius of each sphere in 3D."""
         path = self.path / "voids.csv"
-        return _columns(path, *_read_csv(path), text_columns=("body",))
+        header, rows = _read_csv(path)
+        expected = ["body", "x", "y", "radius"] if self.dimension == 2 else ["body", "x", "y", "z", "radius"]
+        missing = [name for name in expected if name not in header]
+        if missing:
+            raise PostError(f"{path}: no column {', '.join(missing)} (header '{','.join(header)}'; a "
+                            f"{self.dimension}D run writes '{','.join(expected)}')")
+        return _columns(path, header, rows, text_columns=("body",))
 
     def summary(self):
         """summary.json as a dict (exit_code, steps, material_points, porosity, errors, ...)."""

@@ -120,6 +120,32 @@ class Scene(dict):
                 self.units[key] = ""
 
     @property
+    def dimension(self):
+        """2 (plane strain) or 3 (a column periodic in x and z); 2 for scenes written before the
+        simulator had 3D runs."""
+        value = self.get("dimension", 2.0)
+        if value not in (2.0, 3.0):
+            raise PostError(f"{self.source}: dimension = {value}: expected 2 or 3")
+        return int(value)
+
+    @property
+    def depth(self):
+        """z extent of a 3D column in m (the resolved scene states it; 'auto' means the width);
+        None in 2D, where extensive quantities are per metre of depth."""
+        if self.dimension != 3:
+            return None
+        value = self.get("depth")
+        return float(value) if isinstance(value, float) and value > 0 else float(self["width"])
+
+    @property
+    def point_spacing(self):
+        """Spacing of the initial material-point lattice in m: cell_size / particles_per_cell
+        (particles_per_cell counts points along each axis); None if the scene lacks cell_size."""
+        if not isinstance(self.get("cell_size"), float):
+            return None
+        return self["cell_size"] / float(self.get("particles_per_cell", 2.0))
+
+    @property
     def regions(self):
         """Region name -> RegionSpec, in the order the scene lists them."""
         specs = {}

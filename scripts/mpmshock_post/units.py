@@ -25,6 +25,7 @@ QUANTITIES = {
     "temperature": Quantity("$T$", "K", 1.0),
     "velocity_x": Quantity("$u_x$", "m/s", 1.0),
     "velocity_y": Quantity("$u_y$", "m/s", 1.0),
+    "velocity_z": Quantity("$u_z$", "m/s", 1.0),  # 3D runs only
     "speed": Quantity("$|u|$", "m/s", 1.0),
     "rot2": Quantity(r"$\langle \mathrm{Rot}^2 \rangle$", "1/ns^2", 1e-18, r"ns$^{-2}$"),
     "div2": Quantity(r"$\langle \mathrm{Div}^2 \rangle$", "1/ns^2", 1e-18, r"ns$^{-2}$"),
@@ -43,6 +44,8 @@ LENGTH_FACTOR = 1e6  # m -> um
 
 _TIME_SUFFIXES = {"ns": "1e-9", "us": "1e-6", "µs": "1e-6", "ms": "1e-3", "s": "1"}
 _TIME = re.compile(r"^\s*([-+0-9.eE]+)\s*(ns|us|µs|ms|s)\s*$")
+_LENGTH_SUFFIXES = {"m": "1", "mm": "1e-3", "um": "1e-6", "µm": "1e-6", "nm": "1e-9"}
+_LENGTH = re.compile(r"^\s*([-+0-9.eE]+)\s*(mm|um|µm|nm|m)?\s*$")
 
 
 def quantity(name, unit=None):
@@ -68,3 +71,15 @@ def parse_time(text):
         return float(Decimal(match.group(1)) * Decimal(_TIME_SUFFIXES[match.group(2)]))
     except InvalidOperation:
         raise PostError(f"time '{text}': '{match.group(1)}' is not a number") from None
+
+
+def parse_length(text):
+    """Metres from '50um', '50 um', '0.05mm' or '5e-5' (a bare number is in metres, as in region
+    specs and the resolved scene)."""
+    match = _LENGTH.match(text)
+    if not match:
+        raise PostError(f"length '{text}': give a number in metres or with a unit, e.g. 50um, 0.05mm or 5e-5")
+    try:
+        return float(Decimal(match.group(1)) * Decimal(_LENGTH_SUFFIXES[match.group(2) or "m"]))
+    except InvalidOperation:
+        raise PostError(f"length '{text}': '{match.group(1)}' is not a number") from None
