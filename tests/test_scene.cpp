@@ -102,5 +102,20 @@ int main() {
   std::ofstream((dir / "comments.scene").string()) << "# every key at its default\n";
   CHECK(load_scene((dir / "comments.scene").string()).velocity == 1000.0);
   fs::remove_all(dir);
+  // 3D keys: the time step's default by dimension, depth and probes in z.
+  {
+    CHECK(parse_scene("", "d.scene").cfl == kCfl2D);
+    CHECK(parse_scene("dimension = 3\n", "d.scene").cfl == kCfl3D);
+    CHECK(parse_scene("dimension = 3\ncfl = 0.25\n", "d.scene").cfl == 0.25);
+    CHECK(parse_scene("dimension = 3\n", "d.scene", {"cfl=auto"}).cfl == kCfl3D);
+    CHECK(resolved_scene(parse_scene("dimension = 3\n", "d.scene")).find("cfl = 0.2\n") != std::string::npos);
+    CHECK(parse_scene("dimension = 3\nwidth = 0.2 mm\n", "d.scene").derived_depth() == 0.2e-3);
+    CHECK(parse_scene("dimension = 3\ndepth = 0.1 mm\n", "d.scene").derived_depth() == 0.1e-3);
+    CHECK_THROWS_WITH(parse_scene("probe.p = point 10 um 20 um 30 um\n", "d.scene"), "d.scene:1", "'probe.p'",
+                      "dimension = 3");
+    const Scene s = parse_scene("dimension = 3\nprobe.p = point 10 um 20 um 30 um\n", "d.scene");
+    CHECK(s.probes.size() == 1 && s.probes[0].z == 30e-6);
+    CHECK(resolved_scene(s).find("probe.p = point 1e-05 m 2e-05 m 3e-05 m") != std::string::npos);
+  }
   return check::result();
 }
