@@ -49,7 +49,7 @@ Model::Model(const Scene& s)
       // No material point outruns several times the impact speed plus the sound speed; a point
       // that does is a blow-up.
       speed_limit(10.0 * (2.0 * s.velocity + s.material.sound_speed)) {
-  if (s.effects.thermal) thermal.emplace(s.material, s.temperature_model);
+  if (s.effects.thermal) thermal.emplace(s.material, s.temperature_model, s.paper_temperature);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;
   if (s.effects.heat_conduction && s.material.thermal_conductivity > 0.0) {

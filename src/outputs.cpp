@@ -21,7 +21,7 @@ Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append, Mirror
   for (const RegionSpec& r : scene.regions)
     regions_need_whole_ |= mirror_.on() && r.kind == RegionSpec::Kind::band && r.a < scene.cell_size;
   if (!append) {
-    std::fprintf(regions_.get(), "%s\n", kRegionsHeader);
+    std::fprintf(regions_.get(), "%s\n", regions_header(scene.paper_temperature).c_str());
     std::fprintf(conservation_.get(), "%s\n", conservation_header(D).c_str());
   }
 }
@@ -31,7 +31,7 @@ void Outputs<D>::follow(Probes<D> probes, double start_time, bool append) {
   probes_ = std::move(probes);
   if (probes_.empty()) return;
   probes_file_ = open_output(dir_ / "probes.csv", append ? "a" : "w");
-  if (!append) std::fprintf(probes_file_.get(), "%s\n", kProbesHeader);
+  if (!append) std::fprintf(probes_file_.get(), "%s\n", probes_header(scene_.paper_temperature).c_str());
   next_probe_ = append ? probes_.next_after(start_time) : start_time;
 }
 

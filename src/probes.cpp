@@ -7,6 +7,10 @@ namespace mpmshock {
 
 const char* const kProbesHeader = "time,probe,count,x,y,velocity_x,velocity_y,pressure,density,temperature";
 
+std::string probes_header(bool paper_temperature) {
+  return std::string(kProbesHeader) + (paper_temperature ? ",paper_temperature" : "");
+}
+
 template <int D>
 Probes<D>::Probes(const Scene& scene, const Particles<D>& p, const GridGeometry<D>& grid)
     : interval_(scene.probe_interval) {
@@ -57,7 +61,8 @@ template <int D>
 void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal,
                            const MirrorImage<D>& mirror) const {
   for (const Probe& probe : probes_) {
-    double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0, P = 0.0, rho = 0.0, T = 0.0;
+    double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0, P = 0.0, rho = 0.0, T = 0.0, T_paper = 0.0;
+    const bool paper = thermal && thermal->reports_paper_temperature();
     for (std::uint32_t id : probe.ids) {  // storage order is id order: points are never reordered
       const auto [q, mirrored] = mirror.source_of(id);
       const double y_sign = mirrored ? -1.0 : 1.0;
@@ -68,10 +73,13 @@ void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, c
       P += p.P[q];
       rho += p.density(q);
       T += thermal ? thermal->of_point(p, q) : std::nan("");
+      if (paper) T_paper += thermal->paper_of_point(p, q);
     }
     const double n = static_cast<double>(probe.ids.size());
-    std::fprintf(out, "%.10g,%s,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", time, probe.name.c_str(),
+    std::fprintf(out, "%.10g,%s,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g", time, probe.name.c_str(),
                  probe.ids.size(), x / n, y / n, vx / n, vy / n, P / n, rho / n, T / n);
+    if (paper) std::fprintf(out, ",%.10g", T_paper / n);
+    std::fputc('\n', out);
   }
 }
 

@@ -10,6 +10,10 @@ const char* const kRegionsHeader =
     "velocity_x_mean,velocity_x_std,velocity_y_mean,velocity_y_std,rot2_mean,div2_mean,strain_rate2_mean,"
     "macro_density,macro_pressure,macro_normal_stress";
 
+std::string regions_header(bool paper_temperature) {
+  return std::string(kRegionsHeader) + (paper_temperature ? ",paper_temperature_mean,paper_temperature_std" : "");
+}
+
 template <int D>
 double target_top(const Particles<D>& p) {
   double top = -std::numeric_limits<double>::infinity();
@@ -106,6 +110,8 @@ RegionStats region_stats(const Particles<D>& p, const std::vector<std::size_t>& 
   s.pressure = mean_std(points, [&](std::size_t q) { return p.P[q]; });
   if (thermal) {
     s.temperature = mean_std(points, [&](std::size_t q) { return thermal->of_point(p, q); });
+    if (thermal->reports_paper_temperature())
+      s.paper_temperature = mean_std(points, [&](std::size_t q) { return thermal->paper_of_point(p, q); });
   } else {
     s.temperature = {std::nan(""), std::nan("")};
   }
@@ -138,11 +144,13 @@ void write_region_rows(std::FILE* out, double time, const std::vector<RegionStat
   for (const RegionStats& s : stats) {
     std::fprintf(out,
                  "%.10g,%s,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,"
-                 "%.10g\n",
+                 "%.10g",
                  time, s.name.c_str(), s.count, s.density.mean, s.density.std, s.pressure.mean, s.pressure.std,
                  s.temperature.mean, s.temperature.std, s.velocity_x.mean, s.velocity_x.std, s.velocity_y.mean,
                  s.velocity_y.std, s.rot2, s.div2, s.strain_rate2, s.macro_density, s.macro_pressure,
                  s.macro_normal_stress);
+    if (s.paper_temperature) std::fprintf(out, ",%.10g,%.10g", s.paper_temperature->mean, s.paper_temperature->std);
+    std::fputc('\n', out);
   }
 }
 

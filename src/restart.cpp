@@ -141,10 +141,11 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
   if (p.has_failure() != scene.effects.spall)
     bad(std::string("its scene has spall = ") + (scene.effects.spall ? "on" : "off") + " but it holds " +
         (p.has_failure() ? "" : "no ") + "failure state");
-  const bool paper_model = scene.temperature_model == TemperatureModel::paper;
-  if (p.tracks_plastic_heat() != paper_model)
-    bad(std::string("its scene has temperature_model = ") + (paper_model ? "paper" : "energy") + " but it holds " +
-        (p.tracks_plastic_heat() ? "" : "no ") + "plastic heat");
+  if (p.tracks_plastic_heat() != scene.tracks_plastic_heat())
+    bad(std::string("its scene has temperature_model = ") +
+        (scene.temperature_model == TemperatureModel::paper ? "paper" : "energy") + " and paper_temperature = " +
+        (scene.paper_temperature ? "on" : "off") + " but it holds " + (p.tracks_plastic_heat() ? "" : "no ") +
+        "plastic heat");
   if (std::any_of(p.plastic_heat.begin(), p.plastic_heat.end(), [](double w) { return w < 0.0; }))
     bad("it holds a negative plastic heat");
   if (std::any_of(p.failure_J.begin(), p.failure_J.end(), [](double j) { return j < 0.0; }))
@@ -200,9 +201,9 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
     lock = DirectoryLock(dir, snapshot + ": ");
     check_same_run(snapshot, parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, {})),
                    dir);
-    check_csv_header(dir / "regions.csv", kRegionsHeader, snapshot);
+    check_csv_header(dir / "regions.csv", regions_header(scene.paper_temperature), snapshot);
     check_csv_header(dir / "conservation.csv", conservation_header(D), snapshot);
-    check_csv_header(dir / "probes.csv", kProbesHeader, snapshot);
+    check_csv_header(dir / "probes.csv", probes_header(scene.paper_temperature), snapshot);
     // Later snapshots and rows belong to the continuation this restart replaces.
     std::vector<fs::path> later;
     for (const auto& e : fs::directory_iterator(dir))

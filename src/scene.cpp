@@ -319,6 +319,11 @@ const std::vector<Key>& keys() {
         "T = T_H(V) + (plastic work)/c_v, without the compaction heating of collapsing voids, which is what the "
         "paper's reported temperatures fit (a diagnostic: not with heat_conduction or thermal_softening)",
         FIELD(temperature_model)));
+    k.push_back(flag("paper_temperature", "off",
+                     "also report temperature_model = paper's temperature beside the energy model's, from the same "
+                     "run (regions.csv paper_temperature_mean/std, probes.csv and snapshot paper_temperature): "
+                     "both models for the cost of one run; the run itself is unchanged",
+                     FIELD(paper_temperature)));
     k.push_back(flag("spall", "off",
                      "failure in tension: a point whose largest principal stress reaches spall_strength opens "
                      "with its tension held at the strength and no shear, and separates (no tension) once its "
@@ -671,6 +676,18 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
       fail("temperature_model", "paper cannot go with thermal_softening = on: the paper's temperature leaves out "
                                 "the compaction heat and would under-predict softening and melt; use "
                                 "temperature_model = energy");
+  }
+  if (s.paper_temperature) {
+    if (!s.effects.thermal) fail("paper_temperature", "needs thermal = on");
+    if (s.temperature_model == TemperatureModel::paper)
+      fail("paper_temperature", "is already the temperature with temperature_model = paper; use it with "
+                                "temperature_model = energy");
+    if (s.effects.heat_conduction)
+      fail("paper_temperature", "cannot go with heat_conduction = on: conduction moves heat in E, which the "
+                                "paper's temperature does not count");
+    if (s.effects.thermal_softening)
+      fail("paper_temperature", "cannot go with thermal_softening = on, as temperature_model = paper cannot: "
+                                "the paper's temperature is not the one that softens the material");
   }
   if (s.effects.heat_conduction && !s.effects.thermal)
     fail("heat_conduction", "needs thermal = on (conduction moves heat by temperature differences)");

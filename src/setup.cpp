@@ -37,7 +37,7 @@ void enable_fields(Particles<D>& p, const Scene& s) {
   p.enable_strength(has_stress(strength), has_back_stress(strength));
   p.enable_failure(s.effects.spall);
   p.enable_cold_work(s.effects.plasticity && s.taylor_quinney < 1.0);
-  p.enable_plastic_heat(s.temperature_model == TemperatureModel::paper);
+  p.enable_plastic_heat(s.tracks_plastic_heat());
 }
 
 }  // namespace

@@ -121,6 +121,10 @@ void write_particles(hid_t file, const Rows<D>& rows, const HugoniotTemperature*
   doubles("viscous_pressure", rows.field(p.q).data(), {N}, "Pa", "artificial viscous pressure q", chosen);
   doubles("temperature", per_point([&](std::size_t q) { return thermal ? thermal->of_point(p, q) : std::nan(""); }),
           {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
+  if (thermal && thermal->reports_paper_temperature())
+    doubles("paper_temperature", per_point([&](std::size_t q) { return thermal->paper_of_point(p, q); }), {N}, "K",
+            "the paper model's T = T_H(V) + W_p / c_v, W_p the plastic work turned to heat (paper_temperature = on)",
+            chosen);
   doubles("internal_energy", rows.field(p.E).data(), {N}, "J/kg", "specific internal energy, 0 at the reference state",
           chosen);
 

@@ -20,8 +20,9 @@ struct WalshChristian {
 
 }  // namespace
 
-HugoniotTemperature::HugoniotTemperature(const Material& mat, TemperatureModel model, int intervals)
-    : model_(model), eos_(mat), cv_(mat.specific_heat), T0_(mat.initial_temperature), gamma0_(mat.gruneisen_gamma) {
+HugoniotTemperature::HugoniotTemperature(const Material& mat, TemperatureModel model, bool report_paper,
+                                         int intervals)
+    : model_(model), report_paper_(report_paper), eos_(mat), cv_(mat.specific_heat), T0_(mat.initial_temperature), gamma0_(mat.gruneisen_gamma) {
   const double J_limit = eos_.limiting_compression();
   // Stop short of the pole at J = 1 - 1/s where T_H diverges; no physical state gets close.
   J_min_ = J_limit + 0.02 * (1.0 - J_limit);

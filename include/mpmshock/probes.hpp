@@ -17,7 +17,9 @@
 
 namespace mpmshock {
 
+// probes.csv's header; paper_temperature = on adds the column paper_temperature at the end.
 extern const char* const kProbesHeader;
+std::string probes_header(bool paper_temperature);
 
 template <int D>
 class Probes {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct RegionStats {
   std::string name;
   std::size_t count = 0;
   MeanStd density, pressure, temperature, velocity_x, velocity_y;
+  std::optional<MeanStd> paper_temperature;  // the paper model's, when the thermal model reports it
   double rot2 = 0.0;          // |curl v|^2; in 2D (dv_y/dx - dv_x/dy)^2
   double div2 = 0.0;          // (div v)^2
   double strain_rate2 = 0.0;  // D : D with D = sym(grad v)
@@ -68,8 +70,10 @@ inline double rotation2(const Mat<3>& L) {
   return a * a + b * b + c * c;
 }
 
-// regions.csv: the header, and one row per region and sample time.
+// regions.csv: the header, and one row per region and sample time; paper_temperature = on adds the
+// columns paper_temperature_mean and paper_temperature_std at the end.
 extern const char* const kRegionsHeader;
+std::string regions_header(bool paper_temperature);
 void write_region_rows(std::FILE* out, double time, const std::vector<RegionStats>& stats);
 
 }  // namespace mpmshock

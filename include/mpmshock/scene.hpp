@@ -90,6 +90,7 @@ struct Scene {
   double spall_void_fraction = 0.15;  // void fraction at which a failed point separates (spall.hpp)
   double taylor_quinney = 1.0;    // share of plastic work that becomes heat
   TemperatureModel temperature_model = TemperatureModel::energy;
+  bool paper_temperature = false;  // also report the paper model's temperature beside the energy model's
   double softening_temperature = 1923.0;  // [K] where linear softening would reach zero
   double melt_temperature = 1220.0;       // [K] T_m0, the melt temperature at J = 1
   double lindemann_a = 1.5;               // volume exponent of the Lindemann melt curve
@@ -121,6 +122,8 @@ struct Scene {
   }
 
   // Material-point spacing h / ppc.
+  // Points carry their plastic heat W_p when some output reports the paper's temperature T_H + W_p/c_v.
+  bool tracks_plastic_heat() const { return temperature_model == TemperatureModel::paper || paper_temperature; }
   double particle_spacing() const { return cell_size / static_cast<double>(particles_per_cell); }
   // Empty space kept on the grid beyond each body's free surface.
   double derived_grid_margin() const;

@@ -26,8 +26,9 @@ class HugoniotTemperature {
   // limiting compression 1 - 1/s. For J >= 1 (tension) the reference curve is the linear branch
   // P_H = rho0 c0^2 eta, on which the Walsh-Christian equation has no shock-heating term (s = 0):
   // T_H = T0 exp(gamma0 (1 - J)), the isentrope, continuous with its slope at J = 1.
+  // `report_paper`: outputs also carry the paper model's temperature (scene key paper_temperature).
   HugoniotTemperature(const Material& mat, TemperatureModel model = TemperatureModel::energy,
-                      int intervals = 4096);
+                      bool report_paper = false, int intervals = 4096);
 
   double hugoniot_temperature(double J) const;
 
@@ -48,10 +49,18 @@ class HugoniotTemperature {
                                              : temperature(J, p.thermal_energy(q));
   }
 
+  // The paper model's temperature of point q, reported beside the scene's (paper_temperature = on).
+  bool reports_paper_temperature() const { return report_paper_; }
+  template <int D>
+  double paper_of_point(const Particles<D>& p, std::size_t q) const {
+    return paper_temperature(p.material_J(q), p.plastic_heat[q]);
+  }
+
   double min_tabulated_J() const { return J_min_; }
 
  private:
   TemperatureModel model_ = TemperatureModel::energy;
+  bool report_paper_ = false;
   MieGruneisen eos_;
   double cv_ = 880.0, T0_ = 300.0, gamma0_ = 1.96;
   double J_min_ = 0.0, dJ_ = 0.0;

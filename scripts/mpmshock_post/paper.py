@@ -176,7 +176,11 @@ def main(argv=None):
             say("quick: the paper temperature model runs only for " + ", ".join(QUICK_PAPER_T_CASES))
         out = args.out.resolve()
         (out / "runs").mkdir(parents=True, exist_ok=True)
-        planned = plan_runs(cases_for(args.fig), models, out / "runs", args.quick)
+        combined = "paper_temperature" in defaults
+        if "paper" in models and combined:
+            say("each run reports both temperature models (paper_temperature = on): no run is repeated for the "
+                "paper model")
+        planned = plan_runs(cases_for(args.fig), models, out / "runs", args.quick, combined)
         say(f"{len(planned)} runs for figure(s) {','.join(map(str, args.fig))}" + (" (quick)" if args.quick else ""))
         records = execute_all(planned, binary, defaults, args.jobs)
         say(f"runs done after {time.monotonic() - started:.0f} s")

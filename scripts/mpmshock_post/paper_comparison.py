@@ -7,7 +7,8 @@ runs: the rows of comparison.csv.
 
 Runs. runs_dir/<case>/ is an mpmshock run directory of configs/paper/<case>.scene with the default
 (energy) temperature model; runs_dir/<case>-paperT/ is the same case with `temperature_model =
-paper`. Cases: base (delta 1.03, r 50 um, 1000 m/s; Fig. 1-8), void_r25, void_r100 (Fig. 7-8),
+paper`, or, where that directory is absent, <case>/ itself read with its paper_temperature columns
+(a run made with `paper_temperature = on` reports both models). Cases: base (delta 1.03, r 50 um, 1000 m/s; Fig. 1-8), void_r25, void_r100 (Fig. 7-8),
 delta1.4 (r 10 um; Fig. 9-13), delta1.4_v500, delta1.4_v1500, delta1.4_v2000 (Fig. 12), delta1.01,
 delta1.02, delta1.1, delta1.7 (Fig. 13). A run that is missing gives its rows with `mpmshock` empty
 and the note 'not run'; a measurement a run cannot give (too short, no snapshot at that time) gives

@@ -2,7 +2,8 @@
 
 Each figure's title names the case and the resolution (cell size, points per cell, shape function,
 column width) and says 'quick' for a quick campaign. Where a figure has a temperature panel and the
-case also ran with `temperature_model = paper` (DIR/runs/<case>-paperT), that temperature is drawn
+case has the paper model's temperature (its run made with `paper_temperature = on`, or a run of its
+own with `temperature_model = paper` in DIR/runs/<case>-paperT), that temperature is drawn
 too: the same colour, dashed (dotted where the energy-model curve is already dashed), or a field
 panel of its own with the same colour scale.
 """
@@ -22,7 +23,7 @@ from .hist import central_range, plot_histograms, region_values
 from .labels import case_label, run_labels
 from .local import local_quantity
 from .paper_runs import PAPER_SUFFIX, POROSITY_CASES, VELOCITY_CASES, VOID_SIZE_CASES
-from .reader import Run
+from .reader import PaperTemperatureRun, Run, has_paper_temperature
 from .stats import moments
 from .style import COLORS, save_figure
 from .units import LENGTH_FACTOR, TIME, quantity
@@ -51,11 +52,16 @@ class CampaignRuns:
         return Run(self.runs_dir / case)
 
     def paper(self, case):
-        path = self.runs_dir / (case + PAPER_SUFFIX)
-        try:
-            return Run(path) if json.loads((path / "summary.json").read_text()).get("exit_code") == 0 else None
-        except (OSError, ValueError, PostError):
-            return None
+        """The case's run read with the paper model's temperature: its own paper-model run where one
+        was made, else its energy-model run where that reports both (paper_temperature = on)."""
+        for path, reader in ((self.runs_dir / (case + PAPER_SUFFIX), Run), (self.runs_dir / case, PaperTemperatureRun)):
+            try:
+                if json.loads((path / "summary.json").read_text()).get("exit_code") == 0 and (
+                        reader is Run or has_paper_temperature(path)):
+                    return reader(path)
+            except (OSError, ValueError, PostError):
+                pass
+        return None
 
 
 # --- titles -----------------------------------------------------------------------------------------

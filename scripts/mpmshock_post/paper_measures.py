@@ -14,7 +14,7 @@ import numpy as np
 from .errors import PostError
 from .hist import distribution_moments
 from .hugoniot import Material, default_material, porous_shock
-from .reader import Run
+from .reader import PaperTemperatureRun, Run, has_paper_temperature
 from .units import TIME, quantity
 
 PAPER_T_SUFFIX = "-paperT"
@@ -280,11 +280,12 @@ def _display_quantity(column):
 class CaseRun:
     """One run directory of the campaign, with its series in the paper's units (read once)."""
 
-    def __init__(self, case, path, quick=False):
+    def __init__(self, case, path, quick=False, run=None):
+        """`run`: the reader.Run to read (default Run(path)), e.g. a PaperTemperatureRun."""
         self.case = case
         self.path = Path(path)
         self.quick = quick
-        self.run = Run(self.path)
+        self.run = run if run is not None else Run(self.path)
         self.scene = self.run.scene
 
     @cached_property
@@ -456,13 +457,19 @@ class Campaign:
         if case not in self._runs:
             self._runs[case] = None
             path = self.runs_dir / case
+            reader = None
+            if case.endswith(PAPER_T_SUFFIX) and not path.is_dir():
+                # No paper-model run of its own: the energy-model run, where it reports both models.
+                energy = self.runs_dir / case[:-len(PAPER_T_SUFFIX)]
+                if has_paper_temperature(energy):
+                    path, reader = energy, PaperTemperatureRun
             if not (path / "regions.csv").is_file():
                 self._why[case] = case
             elif not (path / "summary.json").is_file():
                 self._why[case] = f"{case} (incomplete: no summary.json)"
             else:
                 try:
-                    run = CaseRun(case, path, self.quick)
+                    run = CaseRun(case, path, self.quick, reader(path) if reader else None)
                     exit_code = run.run.summary().get("exit_code", 0)
                 except PostError as e:
                     self._why[case] = f"{case} (unreadable: {e})"

@@ -2,8 +2,11 @@
 settings, and whether a run directory is reused, resumed from its last snapshot or run afresh.
 
 A case is a scene file configs/paper/<case>.scene; it runs into DIR/runs/<case>/ with the energy
-temperature model (the simulator's default) and into DIR/runs/<case>-paperT/ with
-`temperature_model = paper`.
+temperature model (the simulator's default). The paper's temperature model changes no step of a run,
+only the temperature it reports, so where the simulator has the scene key `paper_temperature` that
+one run reports both models (`paper_temperature = on`, read back as the paper model's run by
+reader.PaperTemperatureRun); with an older simulator the paper model runs again into
+DIR/runs/<case>-paperT/ with `temperature_model = paper`.
 """
 
 import json
@@ -91,9 +94,15 @@ class PlannedRun:
         return self.run_dir.with_name(self.name + ".json")
 
 
-def plan_runs(cases, models, runs_dir, quick):
+def plan_runs(cases, models, runs_dir, quick, combined=False):
+    """The runs of `cases` for the temperature `models`. `combined` (the simulator has the key
+    paper_temperature): the energy-model runs report the paper model too, and no run is repeated
+    for it."""
     runs = []
+    both = combined and "paper" in models
     for model in models:
+        if both and model == "paper":
+            continue
         for case in cases:
             if model == "paper" and quick and QUICK_PAPER_T_CASES is not None and case not in QUICK_PAPER_T_CASES:
                 continue
@@ -103,6 +112,8 @@ def plan_runs(cases, models, runs_dir, quick):
             overrides = quick_overrides(case) if quick else []
             if model == "paper":
                 overrides.append("temperature_model=paper")
+            elif both:
+                overrides.append("paper_temperature=on")
             runs.append(PlannedRun(case, model, scene, overrides, runs_dir / run_name(case, model)))
     return runs
 

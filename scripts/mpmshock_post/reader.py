@@ -9,6 +9,13 @@
     region_stats(snap, "B800")       # the regions.csv row, recomputed from the snapshot
     run.dimension, snap.dimension    # 2 (plane strain) or 3 (a column periodic in x and z)
 
+A run made with `paper_temperature = on` holds the paper model's temperature beside the energy
+model's; `PaperTemperatureRun(path)` reads it as a `temperature_model = paper` run reads, with the
+paper model's numbers in the temperature columns and fields:
+
+    paper = PaperTemperatureRun("output/paper_base")
+    paper.regions()["B800"]["temperature_mean"]   # regions.csv paper_temperature_mean
+
 In 3D (`dimension = 3`) positions and velocities are N x 3 (x, y, z), the deformation and velocity
 gradients 3 x 3, extensive quantities whole (kg, m3) rather than per metre of depth, and voids()
 has a z column (sphere centres); everything else reads as in 2D.
@@ -35,7 +42,7 @@ from .local import local_quantity
 from .regions import region_points, region_stats, target_top
 from .scene import Scene
 
-__all__ = ["Run", "Snapshot", "SnapshotInfo", "local_quantity", "region_points", "region_stats", "target_top"]
+__all__ = ["PaperTemperatureRun", "Run", "Snapshot", "SnapshotInfo", "has_paper_temperature", "local_quantity", "region_points", "region_stats", "target_top"]
 
 _SNAPSHOT_NAME = re.compile(r"^snapshot_(\d+)\.h5$")
 
@@ -88,9 +95,10 @@ def _columns(path, header, rows, text_columns=(), int_columns=()):
 class Fields(Mapping):
     """The /particles datasets of one snapshot, read on first access and then kept."""
 
-    def __init__(self, path, datasets):
+    def __init__(self, path, datasets, aliases=None):
         self._path = path
         self._datasets = datasets  # name -> (shape, units, description)
+        self._aliases = aliases or {}  # name shown -> dataset read
         self._cache = {}
 
     def __getitem__(self, name):
@@ -99,7 +107,7 @@ class Fields(Mapping):
                             f"(it has: {', '.join(self._datasets)})")
         if name not in self._cache:
             with h5py.File(self._path, "r") as f:
-                self._cache[name] = f["particles"][name][()]
+                self._cache[name] = f["particles"][self._aliases.get(name, name)][()]
         return self._cache[name]
 
     def __iter__(self):
@@ -121,8 +129,10 @@ class Fields(Mapping):
 class Snapshot:
     """One snapshot_NNNNN.h5: `time` (s), `step`, `index`, `scene`, and the point `fields`."""
 
-    def __init__(self, path):
+    def __init__(self, path, aliases=None):
+        """`aliases`: dataset name shown -> dataset read, e.g. {"temperature": "paper_temperature"}."""
         self.path = Path(path)
+        aliases = aliases or {}
         try:
             with h5py.File(self.path, "r") as f:
                 attrs = {key: f.attrs[key] for key in f.attrs}
@@ -142,7 +152,11 @@ class Snapshot:
         self.index = int(attrs.get("snapshot", match.group(1) if match else -1))
         self.attrs = {key: _text(v) if isinstance(v, (bytes, str)) else v for key, v in attrs.items()}
         self.scene = Scene(self.attrs["scene"], f"{self.path}:/scene") if "scene" in attrs else None
-        self.fields = Fields(self.path, datasets)
+        for shown, stored in aliases.items():
+            if stored not in datasets:
+                raise PostError(f"{self.path} has no dataset /particles/{stored}")
+            datasets[shown] = datasets[stored]
+        self.fields = Fields(self.path, datasets, aliases)
 
     def __getitem__(self, name):
         return self.fields[name]
@@ -266,6 +280,9 @@ class Run:
                 found.append(SnapshotInfo(int(match.group(1)), time, path))
         return sorted(found)
 
+    def _open_snapshot(self, path):
+        return Snapshot(path)
+
     def snapshot(self, index=None, time=None):
         """The snapshot with file number `index` (negative: from the end; default the last), or the
         one nearest `time` (s), which must lie within a tenth of the snapshot spacing."""
@@ -273,15 +290,15 @@ class Run:
         if not infos:
             raise PostError(f"no snapshot_*.h5 in {self.path}")
         if time is not None:
-            return Snapshot(self._nearest(infos, time).path)
+            return self._open_snapshot(self._nearest(infos, time).path)
         if index is None or index < 0:
             position = -1 if index is None else index
             if -position > len(infos):
                 raise PostError(f"{self.path} has only {len(infos)} snapshots, cannot take index {index}")
-            return Snapshot(infos[position].path)
+            return self._open_snapshot(infos[position].path)
         for info in infos:
             if info.index == index:
-                return Snapshot(info.path)
+                return self._open_snapshot(info.path)
         raise PostError(f"{self.path} has no snapshot {index} (it has {infos[0].index} to {infos[-1].index})")
 
     def _nearest(self, infos, time):
@@ -295,3 +312,50 @@ class Run:
 
     def __repr__(self):
         return f"Run({str(self.path)!r})"
+
+
+_PAPER_COLUMNS = {"temperature_mean": "paper_temperature_mean", "temperature_std": "paper_temperature_std",
+                  "temperature": "paper_temperature"}
+
+
+def has_paper_temperature(path):
+    """Whether the run directory's regions.csv carries the paper model's temperature
+    (paper_temperature = on)."""
+    try:
+        with open(Path(path) / "regions.csv") as f:
+            return "paper_temperature_mean" in f.readline().strip().split(",")
+    except OSError:
+        return False
+
+
+class PaperTemperatureRun(Run):
+    """A run made with `paper_temperature = on`, read with the paper model's temperature
+    (T_H(V) + W_p / c_v) in place of the energy model's: regions.csv's temperature_mean and _std,
+    probes.csv's temperature and the snapshots' temperature are its paper_temperature columns and
+    field. Every other column and field is the run's own: the dynamics do not depend on the model."""
+
+    def __init__(self, path):
+        super().__init__(path)
+        if not has_paper_temperature(self.path):
+            raise PostError(f"{self.path}/regions.csv has no paper_temperature_mean column: the run was not made "
+                            "with paper_temperature = on")
+
+    @staticmethod
+    def _swapped(series):
+        out = dict(series)
+        for shown, stored in _PAPER_COLUMNS.items():
+            if stored in series:
+                out[shown] = series[stored]
+        return out
+
+    def regions(self):
+        return {name: self._swapped(series) for name, series in super().regions().items()}
+
+    def probes(self):
+        return {name: self._swapped(series) for name, series in super().probes().items()}
+
+    def _open_snapshot(self, path):
+        return Snapshot(path, aliases={"temperature": "paper_temperature"})
+
+    def __repr__(self):
+        return f"PaperTemperatureRun({str(self.path)!r})"

@@ -5,6 +5,7 @@ figures, paper.md) that a failing case stops with its name and log.
     OMP_WAIT_POLICY=PASSIVE /usr/bin/python3 -m pytest -q tests/python/test_reproduce_paper.py
 """
 
+import csv
 import json
 import os
 import shutil
@@ -77,6 +78,11 @@ def test_cases_follow_the_figures():
 
 
 def test_plan_names_and_overrides(tmp_path):
+    both = plan_runs(["base", "delta1.4"], ["energy", "paper"], tmp_path, quick=True, combined=True)
+    assert [run.name for run in both] == ["base", "delta1.4"]
+    assert all("paper_temperature=on" in run.overrides for run in both)
+    alone = plan_runs(["base"], ["energy"], tmp_path, quick=True, combined=True)
+    assert "paper_temperature=on" not in alone[0].overrides
     runs = plan_runs(["base", "delta1.4"], ["energy", "paper"], tmp_path, quick=True)
     names = [run.name for run in runs]
     assert names[:2] == ["base", "delta1.4"], names
@@ -169,8 +175,15 @@ def test_campaign_on_tiny_scenes(mpmshock, defaults, tmp_path):
     page = (out / "paper.md").read_text()
     assert "![Fig. 13](fig13.png)" in page and "| `runs/base` |" in page, page
     with_paper = "temperature_model" in defaults
-    assert (out / "runs/base-paperT/summary.json").is_file() == with_paper
+    combined = "paper_temperature" in defaults
+    assert (out / "runs/base-paperT/summary.json").is_file() == (with_paper and not combined)
     assert with_paper or "skipping the paper temperature model" in done.stderr, done.stderr
+    if combined:  # one run per case reports both models, and the comparison reads both
+        assert "paper_temperature_mean" in (out / "runs/base/regions.csv").read_text().splitlines()[0]
+        rows = list(csv.DictReader(open(out / "comparison.csv")))
+        paper_t = [r for r in rows if "(paper T)" in r["quantity"] and r["mpmshock"] not in ("", "nan")]
+        assert paper_t, "no paper-T row was measured from the combined runs"
+        assert not any("not run: base-paperT" in r["note"] for r in rows)
 
     again = reproduce("--out", out, "--fig", "2", scenes=scenes)
     assert again.returncode == 0 and "base: reused" in again.stderr, again.stderr

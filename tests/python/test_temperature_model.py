@@ -9,7 +9,9 @@ I(eps_p) = sigma_Y0 eps_p + E_p eps_p^2 / 2 per unit volume whatever the path, s
 lies between I / rho_max and I / rho_min over the densities the point went through. The case is a
 solid plate impact at +-1000 m/s (40 um column, 1 mm bodies, 10 um cells, 2 x 2 points per cell,
 to 120 ns: the plateau has formed and no release has come back), and a hydrodynamic porous one
-(delta 1.1, no strength) where W_p is zero and the paper model gives T_H(J) exactly. About 5 s.
+(delta 1.1, no strength) where W_p is zero and the paper model gives T_H(J) exactly. Each case
+also runs once with `paper_temperature = on`, which must report both models from the one run:
+the energy model's outputs unchanged and the paper model's in its extra columns. About 8 s.
 """
 
 import shutil
@@ -32,6 +34,8 @@ cell_size = 10 um
 end_time = 120 ns
 snapshot_interval = 60 ns
 region.plateau = band 100 um 400 um
+probe.top = surface
+probe.inside = point 20 um 300 um
 """
 POROUS = """\
 velocity = 1000 m/s
@@ -64,6 +68,8 @@ def runs(mpmshock, tmp_path_factory):
         for model in ("energy", "paper"):
             out[name, model] = tmp / f"{name}_{model}"
             simulate(mpmshock, str(scene), out[name, model], f"temperature_model={model}")
+        out[name, "both"] = tmp / f"{name}_both"
+        simulate(mpmshock, str(scene), out[name, "both"], "paper_temperature=on")
     out["tmp"] = tmp
     return out
 
@@ -91,6 +97,81 @@ def test_same_dynamics(runs, case):
     with h5py.File(last_snapshot(energy)) as fe, h5py.File(last_snapshot(paper)) as fp:
         for field in ("position", "velocity", "internal_energy", "pressure", "deformation_gradient"):
             assert np.array_equal(fe["particles"][field][()], fp["particles"][field][()]), field
+
+
+def columns(path):
+    """CSV column name -> the column's texts, as the simulator printed them."""
+    names, rows = read_csv(path)
+    return {name: [row[i] for row in rows] for i, name in enumerate(names)}
+
+
+@pytest.mark.parametrize("case", ["solid", "porous"])
+def test_paper_temperature_columns(runs, case):
+    """paper_temperature = on: regions.csv holds every column of the energy-model run, printed the
+    same, then paper_temperature_mean and _std equal to the paper-model run's temperature columns;
+    the same for probes.csv's paper_temperature; conservation.csv is unchanged."""
+    energy, paper, both = runs[case, "energy"], runs[case, "paper"], runs[case, "both"]
+    assert (both / "conservation.csv").read_bytes() == (energy / "conservation.csv").read_bytes()
+    e, p, b = (columns(run / "regions.csv") for run in (energy, paper, both))
+    assert list(b) == list(e) + ["paper_temperature_mean", "paper_temperature_std"]
+    for name in e:
+        assert b[name] == e[name], name
+    assert b["paper_temperature_mean"] == p["temperature_mean"]
+    assert b["paper_temperature_std"] == p["temperature_std"]
+    assert b["paper_temperature_mean"] != b["temperature_mean"]
+    if case == "solid":
+        e, p, b = (columns(run / "probes.csv") for run in (energy, paper, both))
+        assert list(b) == list(e) + ["paper_temperature"]
+        for name in e:
+            assert b[name] == e[name], name
+        assert b["paper_temperature"] == p["temperature"]
+
+
+@pytest.mark.parametrize("case", ["solid", "porous"])
+def test_paper_temperature_snapshot(runs, case):
+    """The snapshot's paper_temperature is the paper-model run's temperature bit for bit, and its
+    temperature the energy-model run's."""
+    energy, paper, both = runs[case, "energy"], runs[case, "paper"], runs[case, "both"]
+    with h5py.File(last_snapshot(energy)) as fe, h5py.File(last_snapshot(paper)) as fp, \
+            h5py.File(last_snapshot(both)) as fb:
+        assert np.array_equal(fb["particles/temperature"][()], fe["particles/temperature"][()])
+        assert np.array_equal(fb["particles/paper_temperature"][()], fp["particles/temperature"][()])
+        assert "paper_temperature" not in fe["particles"] and "paper_temperature" not in fp["particles"]
+
+
+def test_paper_temperature_restart(runs, mpmshock):
+    """A paper_temperature = on run restarted from its 60 ns snapshot writes the same regions.csv
+    and probes.csv, and a restart of an energy-model run that asks for it is refused (its points
+    hold no plastic heat: the key cannot change on restart)."""
+    original = runs["solid", "both"]
+    restarted = runs["tmp"] / "both_restarted"
+    shutil.copytree(original, restarted)
+    done = subprocess.run([mpmshock, "--restart", str(restarted / "snapshot_00001.h5"), "--force", "--quiet"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    for name in ("regions.csv", "probes.csv"):
+        assert (restarted / name).read_bytes() == (original / name).read_bytes(), name
+    done = subprocess.run([mpmshock, "--restart", str(runs["solid", "energy"] / "snapshot_00001.h5"), "--set",
+                           "paper_temperature=on", "--set", f"output_dir={runs['tmp'] / 'refused'}", "--quiet"],
+                          capture_output=True, text=True)
+    assert done.returncode == 2 and "paper_temperature" in done.stderr, done.stderr
+    assert "cannot change on restart" in done.stderr, done.stderr
+
+
+@pytest.mark.parametrize("override, words", [("temperature_model=paper", "temperature_model = energy"),
+                                             ("heat_conduction=on", "heat_conduction"),
+                                             ("thermal_softening=on", "thermal_softening"),
+                                             ("thermal=off", "thermal = on")])
+def test_paper_temperature_refuses(runs, mpmshock, override, words):
+    """paper_temperature = on is refused where it would repeat the temperature or report one the run
+    does not follow: the error names the file, the line and the key."""
+    scene = runs["tmp"] / "both.scene"
+    scene.write_text(SOLID + "paper_temperature = on\n")
+    line = len(SOLID.splitlines()) + 1
+    done = subprocess.run([mpmshock, str(scene), "--check", "--set", override], capture_output=True, text=True)
+    assert done.returncode == 2
+    assert f"both.scene:{line}" in done.stderr, done.stderr
+    assert "paper_temperature" in done.stderr and words in done.stderr, done.stderr
 
 
 def snapshot_state(run):
@@ -181,3 +262,24 @@ def test_paper_model_refuses(runs, mpmshock, override, words):
     assert done.returncode == 2
     assert f"paper_model.scene:{line}" in done.stderr
     assert "temperature_model" in done.stderr and words in done.stderr
+
+
+def test_paper_temperature_reader(runs):
+    """reader.PaperTemperatureRun reads a paper_temperature = on run as the paper-model run reads:
+    the same regions.csv temperatures, probes and snapshot temperature field, every other column
+    the run's own; a run without the columns is refused."""
+    from mpmshock_post.errors import PostError
+    from mpmshock_post.reader import PaperTemperatureRun, Run, has_paper_temperature
+
+    view, paper = PaperTemperatureRun(runs["solid", "both"]), Run(runs["solid", "paper"])
+    for name, series in paper.regions().items():
+        got = view.regions()[name]
+        for column in series:
+            assert np.array_equal(got[column], series[column], equal_nan=column != "region"), (name, column)
+    for name, series in paper.probes().items():
+        assert np.array_equal(view.probes()[name]["temperature"], series["temperature"])
+    assert np.array_equal(view.snapshot()["temperature"], paper.snapshot()["temperature"])
+    assert np.array_equal(view.snapshot()["density"], paper.snapshot()["density"])
+    assert not has_paper_temperature(runs["solid", "energy"])
+    with pytest.raises(PostError, match="paper_temperature = on"):
+        PaperTemperatureRun(runs["solid", "energy"])
