@@ -47,7 +47,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   out << " per cell)\n";
   const bool mirrored = st.mirror.on();
   const std::string asymmetry = asymmetry_of(s);
-  const std::string why_off = asymmetry.empty() ? "heat_conduction = on, or as the scene sets it" : asymmetry;
+  const std::string why_off = asymmetry.empty() ? "as the scene sets it" : asymmetry;
   out << "symmetry: "
       << (mirrored ? "on: the target's " + std::to_string(simulated) +
                          " points are simulated, the flyer is their mirror image about y = 0"

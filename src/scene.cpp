@@ -256,7 +256,7 @@ const std::vector<Key>& keys() {
         "symmetry", {{"auto", Symmetry::automatic}, {"on", Symmetry::on}, {"off", Symmetry::off}}, "auto",
         "on: simulate the target alone, with a symmetry plane at y = 0 (no normal velocity, no shear traction), "
         "the flyer its mirror image in every output: half the cost; auto: on whenever the flyer is the target's "
-        "mirror image and heat_conduction is off",
+        "mirror image",
         FIELD(symmetry)));
     k.push_back(quantity("target_height", D::length, Range{0.0, 10.0, true, false}, "5 mm", "target (upper body) height",
                          FIELD(target_height)));
@@ -710,9 +710,6 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   if (s.symmetry == Symmetry::on) {
     if (const std::string why = asymmetry_of(s); !why.empty())
       fail("symmetry", "on needs a flyer that is the target's mirror image about y = 0, but " + why);
-    if (s.effects.heat_conduction)
-      fail("symmetry", "on cannot go with heat_conduction = on yet (conduction's nodal sums are not folded "
-                       "across the plane); use symmetry = off");
   }
   for (const ProbeSpec& p : s.probes)
     if (p.z >= 0.0 && s.dimension != 3) fail("probe." + p.name, "a Z coordinate needs dimension = 3");
@@ -824,7 +821,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   if (scene.cfl < 0.0) scene.cfl = scene.dimension == 3 ? kCfl3D : kCfl2D;
   check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; });
   if (scene.symmetry == Symmetry::automatic)
-    scene.symmetry = asymmetry_of(scene).empty() && !scene.effects.heat_conduction ? Symmetry::on : Symmetry::off;
+    scene.symmetry = asymmetry_of(scene).empty() ? Symmetry::on : Symmetry::off;
   return scene;
 }
 

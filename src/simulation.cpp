@@ -71,6 +71,8 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
     : model_(scene), points_(std::move(points)), grid_(grid), kernels_(kernels_for<D>(model_)),
       effects_(effects_for<D>(model_, grid)), unreached_(points_.size()), clock_(clock) {
   points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
+  for (const auto& e : effects_)
+    if (const auto* plane = dynamic_cast<const SymmetryPlane<D>*>(e.get())) plane_ = plane;
   if (model_.symmetry_plane && std::find(points_.body.begin(), points_.body.end(), Body::flyer) != points_.body.end())
     throw std::logic_error("symmetry = on simulates the target's points alone (build_initial_state gives them)");
   if (model_.skip_unreached && clock.unreached_tail != Clock::kNoneSaved)
@@ -107,7 +109,7 @@ StepStatus Simulation<D>::step(double dt) {
   kernels_.to_grid(points_, bins_, grid_);                             // P2G: m_i, p_i, f_i
   for (auto& e : effects_) e->after_to_grid(grid_, rows);              //   (symmetry plane: the mirror's share)
   if (kernels_.conduct)                                                //   heat conduction: E_p
-    kernels_.conduct(points_, reached, bins_, grid_, *model_.thermal, heat_, dt);
+    kernels_.conduct(points_, reached, bins_, grid_, *model_.thermal, heat_, plane_, dt);
   update_grid_momentum(grid_, rows, dt);                               // a_i, v_i^{n+1}
   for (auto& e : effects_) e->after_grid_update(grid_, rows, dt);      //   (boundary conditions)
   kernels_.velocity_to_points(points_, reached, bins_, grid_, dt,      // G2P: FLIP (/PIC) v_p (MUSL: re-map m_p v_p)

@@ -19,6 +19,11 @@
 // step's start. Explicit diffusion is stable for dt <= h^2 / (2 D alpha) (alpha = k / (rho c_v));
 // the time step keeps 0.2 h^2 / alpha, which for aluminium (alpha = 1e-4 m2/s) binds only below
 // 0.1 um cells: at the paper's cells the mechanical step is 10^3-10^4 times shorter.
+//
+// With a symmetry plane (symmetry = on) each of the three nodal sums is folded across it
+// (SymmetryPlane::fold_scalar) before it is read: the temperature field and heat rates are even in y,
+// so the mirror flyer's share at a node is the target's own share at the mirror node, and the plane
+// is adiabatic (no heat crosses it), as in the whole impact by symmetry.
 #pragma once
 
 #include <cmath>
@@ -29,6 +34,7 @@
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/strip_bins.hpp"
+#include "mpmshock/symmetry_plane.hpp"
 #include "mpmshock/temperature.hpp"
 
 namespace mpmshock {
@@ -42,11 +48,15 @@ struct HeatConduction {
   std::vector<double> node_rate;  // Q_i
 };
 
+// `plane`: the symmetry plane (symmetry = on), or null.
 template <int D, class Shape>
 void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
-                  const HugoniotTemperature& thermal, HeatConduction& h, double dt) {
+                  const HugoniotTemperature& thermal, HeatConduction& h, const SymmetryPlane<D>* plane, double dt) {
   const GridGeometry<D>& geo = g.geo;
   const RowRange rows = bins.rows();
+  auto fold = [&](std::vector<double>& field) {
+    if (plane) plane->fold_scalar(g, field, rows);
+  };
   const std::size_t first = geo.row_start(rows.begin), last = geo.row_start(rows.end);
   h.node_heat.resize(geo.nodes());
   h.node_rate.resize(geo.nodes());
@@ -61,6 +71,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
     for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
                   [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * mT; });
   });
+  fold(h.node_heat);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = first; i < last; ++i) h.node_heat[i] = g.m[i] > 0.0 ? h.node_heat[i] / g.m[i] : 0.0;
 
@@ -73,6 +84,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
     const double kV = h.conductivity * pts.volume(p);
     for_each_node(st, geo, [&](std::size_t i, double, const Vec<D>& dN) { h.node_rate[i] -= kV * dot(grad, dN); });
   });
+  fold(h.node_rate);
 
   // 4a. d_p = T_p - sum_i N_ip T_i, in place of T_p.
   std::vector<double>& d = pts.work;
@@ -92,6 +104,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
     for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
                   [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * md; });
   });
+  fold(h.node_heat);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = first; i < last; ++i) h.node_heat[i] = g.m[i] > 0.0 ? h.node_heat[i] / g.m[i] : 0.0;
   // 4c. The grid's heat, and the decay of the sub-cell part d_p - sum_i N_ip d_i.

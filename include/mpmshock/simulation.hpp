@@ -15,6 +15,7 @@
 #include "mpmshock/scene.hpp"
 #include "mpmshock/step_effect.hpp"
 #include "mpmshock/strip_bins.hpp"
+#include "mpmshock/symmetry_plane.hpp"
 #include "mpmshock/unreached.hpp"
 
 namespace mpmshock {
@@ -31,7 +32,7 @@ struct Kernels {
   StressUpdateResult (*update_points)(Particles<D>&, PointRange, const Model&, double dt);
   // Heat conduction, or null when the scene has none.
   void (*conduct)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const HugoniotTemperature&,
-                  HeatConduction&, double dt);
+                  HeatConduction&, const SymmetryPlane<D>*, double dt);
 };
 
 // Where the integrator stands: all it needs, besides the points, to take the next step.
@@ -90,6 +91,7 @@ class Simulation {
   Kernels<D> kernels_;
   HeatConduction heat_;
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;
+  const SymmetryPlane<D>* plane_ = nullptr;  // the symmetry plane among effects_ (symmetry = on), for conduction
   UnreachedMaterial<D> unreached_;
   Clock clock_;
 };

@@ -11,9 +11,14 @@
 // point reads the same nodal values the whole-domain run would give it. The MUSL re-map scatter
 // is folded the same way. A point never crosses the plane: the nodal v_y is odd in y, so the
 // velocity interpolated at a point vanishes as its y does.
+//
+// A nodal scalar that is even in y (a mass-weighted temperature, a heat rate: heat conduction's
+// sums) folds as the mass does (fold_scalar): the ghost's share is added to its mirror node, the
+// plane's row counts twice, and the ghost then holds its mirror's value.
 #pragma once
 
 #include <cmath>
+#include <vector>
 
 #include "mpmshock/grid.hpp"
 #include "mpmshock/mirror_image.hpp"
@@ -40,6 +45,14 @@ class SymmetryPlane final : public StepEffect<D> {
       g.m[ghost] = g.m[image] += g.m[ghost];
       g.mv[ghost] = reflected(add_reflected(g.mv[image], g.mv[ghost]));
       g.f[ghost] = reflected(add_reflected(g.f[image], g.f[ghost]));
+    });
+  }
+
+  // The mirror's share of a nodal scalar even in y, scattered by the step's points on `rows`.
+  void fold_scalar(const Grid<D>& g, std::vector<double>& field, RowRange rows) const {
+    fold(g, rows, [&field](std::size_t ghost, std::size_t image, bool on_plane) {
+      if (on_plane) field[image] *= 2.0;
+      else field[ghost] = field[image] += field[ghost];
     });
   }
 
