@@ -65,7 +65,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
       << (s.effects.thermal ? "on" : "off") << ", artificial viscosity "
       << (s.effects.artificial_viscosity ? "on" : "off") << ", voids " << (s.porosity > 1.0 ? "on" : "off")
       << "; update scheme " << (s.update_scheme == UpdateScheme::musl ? "MUSL" : "USL") << "\n";
-  const std::size_t per_point = st.particles.bytes_per_point() + StripBins::kBytesPerPoint;
+  const std::size_t per_point = st.particles.bytes_per_point() + step_scratch_bytes<D>(s);
   const double bytes = static_cast<double>(simulated) * static_cast<double>(per_point) +
                        static_cast<double>(g.nodes()) * static_cast<double>(Grid<D>::bytes_per_node());
   out << "memory: about " << bytes_text(bytes) << " (" << per_point << " bytes per simulated point, "

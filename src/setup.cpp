@@ -54,7 +54,7 @@ SizeEstimate estimate_size(const Scene& s) {
   e.nodes = static_cast<double>(g.nodes());
   Particles<D> sample;
   enable_fields(sample, s);
-  e.point_bytes = e.points * static_cast<double>(sample.bytes_per_point() + StripBins::kBytesPerPoint);
+  e.point_bytes = e.points * static_cast<double>(sample.bytes_per_point() + step_scratch_bytes<D>(s));
   e.node_bytes = e.nodes * static_cast<double>(Grid<D>::bytes_per_node());
   return e;
 }

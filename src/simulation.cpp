@@ -106,13 +106,13 @@ StepStatus Simulation<D>::step(double dt) {
   const RowRange rows = bins_.rows();
   const bool musl = model_.scheme == UpdateScheme::musl;
   grid_.reset(rows);                                                   // reset grid
-  kernels_.to_grid(points_, bins_, grid_);                             // P2G: m_i, p_i, f_i
+  kernels_.to_grid(points_, bins_, grid_, stencils_);                  // P2G: m_i, p_i, f_i (and N_ip)
   for (auto& e : effects_) e->after_to_grid(grid_, rows);              //   (symmetry plane: the mirror's share)
   if (kernels_.conduct)                                                //   heat conduction: E_p
-    kernels_.conduct(points_, reached, bins_, grid_, *model_.thermal, heat_, plane_, dt);
+    kernels_.conduct(points_, reached, bins_, grid_, stencils_, *model_.thermal, heat_, plane_, dt);
   update_grid_momentum(grid_, rows, dt);                               // a_i, v_i^{n+1}
   for (auto& e : effects_) e->after_grid_update(grid_, rows, dt);      //   (boundary conditions)
-  kernels_.velocity_to_points(points_, reached, bins_, grid_, dt,      // G2P: FLIP (/PIC) v_p (MUSL: re-map m_p v_p)
+  kernels_.velocity_to_points(points_, reached, bins_, grid_, stencils_, dt,  // G2P: FLIP (/PIC) v_p (MUSL: re-map)
                               model_.flip_fraction);
   if (musl) {
     for (auto& e : effects_) e->before_remap(grid_, rows);
@@ -120,7 +120,7 @@ StepStatus Simulation<D>::step(double dt) {
     for (auto& e : effects_) e->after_remap(grid_, rows);
   }
   const std::size_t left = kernels_.gradient_work_and_move(            // L_p, work_p, x_p
-      points_, reached, grid_, musl ? grid_.v_remap : grid_.v, dt);
+      points_, reached, grid_, stencils_, musl ? grid_.v_remap : grid_.v, dt);
   unreached_.advance(points_, dt);                                     //   the rest: x_p += v0 dt
   const StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt);  // E, F, s, P, q
   clock_.time += dt;

@@ -51,8 +51,10 @@ struct HeatConduction {
 // `plane`: the symmetry plane (symmetry = on), or null.
 template <int D, class Shape>
 void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
-                  const HugoniotTemperature& thermal, HeatConduction& h, const SymmetryPlane<D>* plane, double dt) {
+                  const StencilStore<D>& store, const HugoniotTemperature& thermal, HeatConduction& h,
+                  const SymmetryPlane<D>* plane, double dt) {
   const GridGeometry<D>& geo = g.geo;
+  const auto& stencils = store.template of<Shape::support>();  // P2G's, of the same x and F
   const RowRange rows = bins.rows();
   auto fold = [&](std::vector<double>& field) {
     if (plane) plane->fold_scalar(g, field, rows);
@@ -68,7 +70,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
   bins.scatter([&](std::size_t p) {  // 1. m_i T_i
     T[p] = thermal.of_point(pts, p);
     const double mT = pts.m[p] * T[p];
-    for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
+    for_each_node(stencils[p], geo,
                   [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * mT; });
   });
   fold(h.node_heat);
@@ -76,7 +78,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
   for (std::size_t i = first; i < last; ++i) h.node_heat[i] = g.m[i] > 0.0 ? h.node_heat[i] / g.m[i] : 0.0;
 
   bins.scatter([&](std::size_t p) {  // 2. and 3.
-    const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
+    const auto& st = stencils[p];
     Vec<D> grad{};
     for_each_node(st, geo, [&](std::size_t i, double, const Vec<D>& dN) {
       for (int d = 0; d < D; ++d) grad[d] += h.node_heat[i] * dN[d];
@@ -91,7 +93,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
 #pragma omp parallel for schedule(dynamic, kChunk)
   for (std::size_t p = range.begin; p < range.end; ++p) {
     double T_grid = 0.0;
-    for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
+    for_each_node(stencils[p], geo,
                   [&](std::size_t i, double N, const Vec<D>&) { T_grid += N * h.node_heat[i]; });
     d[p] = T[p] - T_grid;
   }
@@ -101,7 +103,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
   for (std::size_t i = first; i < last; ++i) h.node_heat[i] = 0.0;
   bins.scatter([&](std::size_t p) {
     const double md = pts.m[p] * d[p];
-    for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo,
+    for_each_node(stencils[p], geo,
                   [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * md; });
   });
   fold(h.node_heat);
@@ -112,7 +114,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
 #pragma omp parallel for schedule(dynamic, kChunk)
   for (std::size_t p = range.begin; p < range.end; ++p) {
     double heat = 0.0, d_grid = 0.0;
-    for_each_node(Shape::at(pts.x[p], geo, pts.F[p]), geo, [&](std::size_t i, double N, const Vec<D>&) {
+    for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
       if (N > 0.0) heat += N * h.node_rate[i] / g.m[i];  // N > 0: this point gave node i its mass
       d_grid += N * h.node_heat[i];
     });

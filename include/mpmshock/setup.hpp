@@ -8,6 +8,8 @@
 #include "mpmshock/mirror_image.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
+#include "mpmshock/shape.hpp"
+#include "mpmshock/strip_bins.hpp"
 #include "mpmshock/voids.hpp"
 
 namespace mpmshock {
@@ -35,6 +37,13 @@ struct InitialState {
   MirrorImage<D> mirror;
   BodySummary target, flyer;
 };
+
+// The step's scratch per point besides the points' own fields: the scatter bins and the stencil
+// P2G keeps for the passes after it.
+template <int D>
+std::size_t step_scratch_bytes(const Scene& s) {
+  return StripBins::kBytesPerPoint + StencilStore<D>::bytes_per_point(s.shape_function == ShapeFunction::bilinear ? 2 : 3);
+}
 
 // The memory a scene's run needs, estimated from the scene alone (nothing is allocated).
 struct SizeEstimate {

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "mpmshock/grid.hpp"
 
@@ -29,9 +30,31 @@ struct Stencil {
   static constexpr int support = S;
   int column[S];    // node columns (x), already wrapped into [0, nx)
   int row0;         // first node row (y); rows row0 .. row0 + S - 1
-  int layer[S];     // node layers (z), wrapped into [0, nz); unused in 2D
+  int layer[D == 3 ? S : 1];  // node layers (z), wrapped into [0, nz); 3D only
   double w[D][S];   // 1D weights
   double g[D][S];   // 1D derivatives [1/m]
+};
+
+// The stencils of a step's points, one per point by storage index: P2G computes each once, and the
+// passes after it in the same step (heat conduction, G2P, the velocity gradient) read it again, since
+// a point's x and F do not change until the step moves and updates it.
+template <int D>
+struct StencilStore {
+  std::vector<Stencil<2, D>> linear;     // bilinear (trilinear) cells
+  std::vector<Stencil<3, D>> quadratic;  // gimp, bspline2
+
+  template <int S>
+  std::vector<Stencil<S, D>>& of() {
+    if constexpr (S == 2) return linear; else return quadratic;
+  }
+  template <int S>
+  const std::vector<Stencil<S, D>>& of() const {
+    if constexpr (S == 2) return linear; else return quadratic;
+  }
+  // Bytes per point for a shape function of `support` nodes per axis (the --check estimate).
+  static constexpr std::size_t bytes_per_point(int support) {
+    return support == 2 ? sizeof(Stencil<2, D>) : sizeof(Stencil<3, D>);
+  }
 };
 
 namespace detail {

@@ -25,14 +25,15 @@ namespace mpmshock {
 template <int D>
 struct Kernels {
   bool (*bin)(StripBins&, const Particles<D>&, PointRange, const GridGeometry<D>&);
-  void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&);
-  void (*velocity_to_points)(Particles<D>&, PointRange, const StripBins&, Grid<D>&, double dt, double flip_fraction);
-  std::size_t (*gradient_work_and_move)(Particles<D>&, PointRange, const Grid<D>&, const std::vector<Vec<D>>& u,
-                                        double dt);
+  void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&, StencilStore<D>&);
+  void (*velocity_to_points)(Particles<D>&, PointRange, const StripBins&, Grid<D>&, const StencilStore<D>&, double dt,
+                             double flip_fraction);
+  std::size_t (*gradient_work_and_move)(Particles<D>&, PointRange, const Grid<D>&, const StencilStore<D>&,
+                                        const std::vector<Vec<D>>& u, double dt);
   StressUpdateResult (*update_points)(Particles<D>&, PointRange, const Model&, double dt);
   // Heat conduction, or null when the scene has none.
-  void (*conduct)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const HugoniotTemperature&,
-                  HeatConduction&, const SymmetryPlane<D>*, double dt);
+  void (*conduct)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
+                  const HugoniotTemperature&, HeatConduction&, const SymmetryPlane<D>*, double dt);
 };
 
 // Where the integrator stands: all it needs, besides the points, to take the next step.
@@ -88,6 +89,7 @@ class Simulation {
   Particles<D> points_;
   Grid<D> grid_;
   StripBins bins_;
+  StencilStore<D> stencils_;  // the step's shape weights, computed once by P2G
   Kernels<D> kernels_;
   HeatConduction heat_;
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;

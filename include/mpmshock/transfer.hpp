@@ -39,12 +39,15 @@ inline Mat<D> cauchy_stress(const Particles<D>& pts, std::size_t p) {
   return sigma;
 }
 
-// P2G of mass, momentum and internal force.
+// P2G of mass, momentum and internal force; keeps each point's stencil for the rest of the step.
 template <int D, class Shape, bool Strength>
-void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g) {
+void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g, StencilStore<D>& store) {
   const GridGeometry<D>& geo = g.geo;
+  auto& stencils = store.template of<Shape::support>();
+  stencils.resize(pts.size());
   bins.scatter([&](std::size_t p) {
     const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
+    stencils[p] = st;
     const double m = pts.m[p], V = pts.volume(p);
     Vec<D> mv;
     for (int d = 0; d < D; ++d) mv[d] = m * pts.v[p][d];
@@ -78,11 +81,12 @@ void remap_grid_velocity(Grid<D>& g, RowRange rows);
 // of velocity_gradient_work_and_move assumes are FLIP's). With Remap (MUSL), also scatters
 // m_p v_p^{n+1} back to the nodes at the same stencil.
 template <int D, class Shape, bool Remap, bool Blend>
-void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const StripBins& bins, Grid<D>& g, double dt,
-                                [[maybe_unused]] double flip_fraction) {
+void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const StripBins& bins, Grid<D>& g,
+                                const StencilStore<D>& store, double dt, [[maybe_unused]] double flip_fraction) {
   const GridGeometry<D>& geo = g.geo;
+  const auto& stencils = store.template of<Shape::support>();
   auto kernel = [&](std::size_t p) {
-    const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
+    const auto& st = stencils[p];
     Vec<D> acc{}, pic{};
     for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
       for (int d = 0; d < D; ++d) acc[d] += N * g.a[i][d];
@@ -137,13 +141,14 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
 // index of a point that left the grid, or kNoPoint. Only the points of `range`.
 template <int D, class Shape, bool Strength>
 std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range, const Grid<D>& g,
-                                            const std::vector<Vec<D>>& u, double dt) {
+                                            const StencilStore<D>& store, const std::vector<Vec<D>>& u, double dt) {
   const GridGeometry<D>& geo = g.geo;
+  const auto& stencils = store.template of<Shape::support>();
   const int last_row = geo.ny - Shape::support;
   std::size_t first_out = kNoPoint;
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(min : first_out)
   for (std::size_t p = range.begin; p < range.end; ++p) {
-    const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
+    const auto& st = stencils[p];
     Mat<D> L{};  // L[u]
     Mat<D> A{};  // L[v^n + u], twice the averaged gradient
     Vec<D> vel{};
