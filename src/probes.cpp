@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "mpmshock/exact_sum.hpp"
+
 namespace mpmshock {
 
 const char* const kProbesHeader = "time,probe,count,x,y,velocity_x,velocity_y,pressure,density,temperature";
@@ -60,25 +62,31 @@ double Probes<D>::next_after(double t) const {
 template <int D>
 void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal,
                            const MirrorImage<D>& mirror) const {
-  for (const Probe& probe : probes_) {
-    double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0, P = 0.0, rho = 0.0, T = 0.0, T_paper = 0.0;
-    const bool paper = thermal && thermal->reports_paper_temperature();
-    for (std::uint32_t id : probe.ids) {  // storage order is id order: points are never reordered
-      const auto [q, mirrored] = mirror.source_of(id);
+  enum { kX, kY, kVx, kVy, kP, kRho, kT, kPaperT, kSums };
+  const bool paper = thermal && thermal->reports_paper_temperature();
+  std::vector<ExactSum> sums(probes_.size() * kSums);
+  for (std::size_t k = 0; k < probes_.size(); ++k) {
+    ExactSum* s = &sums[k * kSums];
+    for (std::uint32_t id : probes_[k].ids) {
+      const auto [q, mirrored] = mirror.source_of(id);  // storage order is id order: points are never reordered
       const double y_sign = mirrored ? -1.0 : 1.0;
-      x += p.x[q][0];
-      y += y_sign * p.x[q][1];
-      vx += p.v[q][0];
-      vy += y_sign * p.v[q][1];
-      P += p.P[q];
-      rho += p.density(q);
-      T += thermal ? thermal->of_point(p, q) : std::nan("");
-      if (paper) T_paper += thermal->paper_of_point(p, q);
+      s[kX].add(p.x[q][0]);
+      s[kY].add(y_sign * p.x[q][1]);
+      s[kVx].add(p.v[q][0]);
+      s[kVy].add(y_sign * p.v[q][1]);
+      s[kP].add(p.P[q]);
+      s[kRho].add(p.density(q));
+      s[kT].add(thermal ? thermal->of_point(p, q) : std::nan(""));
+      if (paper) s[kPaperT].add(thermal->paper_of_point(p, q));
     }
+  }
+  for (std::size_t k = 0; k < probes_.size(); ++k) {
+    const Probe& probe = probes_[k];
     const double n = static_cast<double>(probe.ids.size());
+    auto mean = [&](int i) { return sums[k * kSums + i].value() / n; };
     std::fprintf(out, "%.10g,%s,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g", time, probe.name.c_str(),
-                 probe.ids.size(), x / n, y / n, vx / n, vy / n, P / n, rho / n, T / n);
-    if (paper) std::fprintf(out, ",%.10g", T_paper / n);
+                 probe.ids.size(), mean(kX), mean(kY), mean(kVx), mean(kVy), mean(kP), mean(kRho), mean(kT));
+    if (paper) std::fprintf(out, ",%.10g", mean(kPaperT));
     std::fputc('\n', out);
   }
 }

@@ -1,5 +1,6 @@
 #include "mpmshock/regions.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -14,15 +15,16 @@ std::string regions_header(bool paper_temperature) {
   return std::string(kRegionsHeader) + (paper_temperature ? ",paper_temperature_mean,paper_temperature_std" : "");
 }
 
+namespace {
+
+// Highest y of the target's points on every rank.
 template <int D>
-double target_top(const Particles<D>& p) {
+double target_top(const Particles<D>& p, const Comm& comm) {
   double top = -std::numeric_limits<double>::infinity();
   for (std::size_t q = 0; q < p.size(); ++q)
     if (p.body[q] == Body::target) top = std::max(top, p.x[q][1]);
-  return top;
+  return comm.max(top);
 }
-
-namespace {
 
 struct Band {
   double lo, hi;
@@ -38,11 +40,8 @@ Band band_of(const RegionSpec& r, double y_top) {
   return {r.a, r.b, false};
 }
 
-}  // namespace
-
 template <int D>
-std::vector<std::size_t> points_in_region(const Particles<D>& p, const RegionSpec& r, double y_top) {
-  const Band b = band_of(r, y_top);
+std::vector<std::size_t> points_in(const Particles<D>& p, const Band& b) {
   std::vector<std::size_t> out;
   for (std::size_t q = 0; q < p.size(); ++q) {
     if (b.target_only && p.body[q] != Body::target) continue;
@@ -51,91 +50,113 @@ std::vector<std::size_t> points_in_region(const Particles<D>& p, const RegionSpe
   return out;
 }
 
+// The quantities of a region: those with a mean and a deviation, those with a mean only, and the
+// band sums of the macroscopic averages.
+enum Spread { kDensity, kPressure, kTemperature, kPaperTemperature, kVelocityX, kVelocityY, kSpreads };
+enum Mean { kRot2 = kSpreads, kDiv2, kStrainRate2, kMeans };
+enum BandSum { kBandMass = kMeans, kBandPressure, kBandNormal, kSums };
+
 template <int D>
-void macro_averages(const Particles<D>& p, double lo, double hi, bool target_only, double cross_section,
-                    RegionStats& s) {
-  double mass = 0.0, pressure = 0.0, normal = 0.0;
+struct PointValues {
+  const Particles<D>& p;
+  const HugoniotTemperature* thermal;
+  double operator()(int k, std::size_t q) const {
+    switch (k) {
+      case kDensity: return p.density(q);
+      case kPressure: return p.P[q];
+      case kTemperature: return thermal ? thermal->of_point(p, q) : std::nan("");
+      case kPaperTemperature: return thermal && thermal->reports_paper_temperature() ? thermal->paper_of_point(p, q) : 0.0;
+      case kVelocityX: return p.v[q][0];
+      case kVelocityY: return p.v[q][1];
+      case kRot2: return rotation2(p.L[q]);
+      case kDiv2: {
+        const double div = trace(p.L[q]);
+        return div * div;
+      }
+      case kStrainRate2: return strain_rate(p.L[q]).norm2();
+      default: return 0.0;
+    }
+  }
+};
+
+// The band's mass, V P and V (P + q - s_yy), each point counted with the share of its y extent (its
+// initial spacing V0^(1/D) stretched by F_yy) inside [lo, hi].
+template <int D>
+void add_band_sums(const Particles<D>& p, const Band& b, ExactSum* sums) {
   for (std::size_t q = 0; q < p.size(); ++q) {
-    if (target_only && p.body[q] != Body::target) continue;
-    // The point's y extent: its initial spacing V0^(1/D) stretched by F_yy.
+    if (b.target_only && p.body[q] != Body::target) continue;
     const double half = 0.5 * std::pow(p.V0[q], 1.0 / D) * std::abs(p.F[q](1, 1));
     const double y = p.x[q][1];
-    const double inside = std::min(hi, y + half) - std::max(lo, y - half);
+    const double inside = std::min(b.hi, y + half) - std::max(b.lo, y - half);
     if (inside <= 0.0) continue;
     const double share = std::min(1.0, inside / (2.0 * half)), V = share * p.volume(q);
-    mass += share * p.m[q];
-    pressure += V * p.P[q];
-    normal += V * (p.P[q] + p.q[q] - (p.s.empty() ? 0.0 : p.s[q].yy));
+    sums[kBandMass].add(share * p.m[q]);
+    sums[kBandPressure].add(V * p.P[q]);
+    sums[kBandNormal].add(V * (p.P[q] + p.q[q] - (p.s.empty() ? 0.0 : p.s[q].yy)));
   }
-  const double area = (hi - lo) * cross_section;
-  s.macro_density = mass / area;
-  s.macro_pressure = pressure / area;
-  s.macro_normal_stress = normal / area;
-}
-
-namespace {
-
-// Mean and population deviation of f over the points, in two passes (no cancellation).
-template <class F>
-MeanStd mean_std(const std::vector<std::size_t>& points, F&& f) {
-  if (points.empty()) return {std::nan(""), std::nan("")};
-  double sum = 0.0;
-  for (std::size_t q : points) sum += f(q);
-  const double mean = sum / static_cast<double>(points.size());
-  double dev2 = 0.0;
-  for (std::size_t q : points) {
-    const double d = f(q) - mean;
-    dev2 += d * d;
-  }
-  return {mean, std::sqrt(dev2 / static_cast<double>(points.size()))};
-}
-
-template <class F>
-double mean_of(const std::vector<std::size_t>& points, F&& f) {
-  if (points.empty()) return std::nan("");
-  double sum = 0.0;
-  for (std::size_t q : points) sum += f(q);
-  return sum / static_cast<double>(points.size());
 }
 
 }  // namespace
 
 template <int D>
-RegionStats region_stats(const Particles<D>& p, const std::vector<std::size_t>& points, const std::string& name,
-                         const HugoniotTemperature* thermal) {
-  RegionStats s;
-  s.name = name;
-  s.count = points.size();
-  s.density = mean_std(points, [&](std::size_t q) { return p.density(q); });
-  s.pressure = mean_std(points, [&](std::size_t q) { return p.P[q]; });
-  if (thermal) {
-    s.temperature = mean_std(points, [&](std::size_t q) { return thermal->of_point(p, q); });
-    if (thermal->reports_paper_temperature())
-      s.paper_temperature = mean_std(points, [&](std::size_t q) { return thermal->paper_of_point(p, q); });
-  } else {
-    s.temperature = {std::nan(""), std::nan("")};
-  }
-  s.velocity_x = mean_std(points, [&](std::size_t q) { return p.v[q][0]; });
-  s.velocity_y = mean_std(points, [&](std::size_t q) { return p.v[q][1]; });
-  s.rot2 = mean_of(points, [&](std::size_t q) { return rotation2(p.L[q]); });
-  s.div2 = mean_of(points, [&](std::size_t q) {
-    const double div = trace(p.L[q]);
-    return div * div;
-  });
-  s.strain_rate2 = mean_of(points, [&](std::size_t q) { return strain_rate(p.L[q]).norm2(); });
-  return s;
-}
-
-template <int D>
 std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector<RegionSpec>& regions,
-                                        const HugoniotTemperature* thermal, double cross_section) {
-  const double y_top = target_top(p);
-  std::vector<RegionStats> out;
-  out.reserve(regions.size());
-  for (const RegionSpec& r : regions) {
-    out.push_back(region_stats(p, points_in_region(p, r, y_top), r.name, thermal));
-    const Band b = band_of(r, y_top);
-    macro_averages(p, b.lo, b.hi, b.target_only, cross_section, out.back());
+                                        const HugoniotTemperature* thermal, double cross_section, const Comm& comm) {
+  const double y_top = target_top(p, comm);
+  const PointValues<D> value{p, thermal};
+  const std::size_t n = regions.size();
+  // Pass 1, on every rank: counts and sums; then the means, the same on every rank.
+  std::vector<std::vector<std::size_t>> members(n);
+  std::vector<ExactSum> sums(n * kSums);
+  std::vector<std::int64_t> counts(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    const Band b = band_of(regions[r], y_top);
+    members[r] = points_in(p, b);
+    counts[r] = static_cast<std::int64_t>(members[r].size());
+    ExactSum* s = &sums[r * kSums];
+    for (std::size_t q : members[r])
+      for (int k = 0; k < kMeans; ++k) s[k].add(value(k, q));
+    add_band_sums(p, b, s);
+  }
+  comm.sum(counts.data(), static_cast<int>(n));
+  comm.sum(sums.data(), static_cast<int>(sums.size()));
+  std::vector<double> means(n * kMeans);
+  for (std::size_t r = 0; r < n; ++r)
+    for (int k = 0; k < kMeans; ++k)
+      means[r * kMeans + k] = counts[r] > 0 ? sums[r * kSums + k].value() / static_cast<double>(counts[r]) : std::nan("");
+  // Pass 2: the population deviations about those means (no cancellation).
+  std::vector<ExactSum> deviations(n * kSpreads);
+  for (std::size_t r = 0; r < n; ++r)
+    for (std::size_t q : members[r])
+      for (int k = 0; k < kSpreads; ++k) {
+        const double d = value(k, q) - means[r * kMeans + k];
+        deviations[r * kSpreads + k].add(d * d);
+      }
+  comm.sum(deviations.data(), static_cast<int>(deviations.size()));
+
+  std::vector<RegionStats> out(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    RegionStats& s = out[r];
+    s.name = regions[r].name;
+    s.count = static_cast<std::size_t>(counts[r]);
+    auto stat = [&](int k) -> MeanStd {
+      if (counts[r] == 0) return {std::nan(""), std::nan("")};
+      return {means[r * kMeans + k],
+              std::sqrt(deviations[r * kSpreads + k].value() / static_cast<double>(counts[r]))};
+    };
+    s.density = stat(kDensity);
+    s.pressure = stat(kPressure);
+    s.temperature = stat(kTemperature);
+    if (thermal && thermal->reports_paper_temperature()) s.paper_temperature = stat(kPaperTemperature);
+    s.velocity_x = stat(kVelocityX);
+    s.velocity_y = stat(kVelocityY);
+    s.rot2 = means[r * kMeans + kRot2];
+    s.div2 = means[r * kMeans + kDiv2];
+    s.strain_rate2 = means[r * kMeans + kStrainRate2];
+    const Band b = band_of(regions[r], y_top);
+    const double area = (b.hi - b.lo) * cross_section;
+    s.macro_density = sums[r * kSums + kBandMass].value() / area;
+    s.macro_pressure = sums[r * kSums + kBandPressure].value() / area;
+    s.macro_normal_stress = sums[r * kSums + kBandNormal].value() / area;
   }
   return out;
 }
@@ -154,16 +175,9 @@ void write_region_rows(std::FILE* out, double time, const std::vector<RegionStat
   }
 }
 
-#define MPMSHOCK_INSTANTIATE(D)                                                                              \
-  template double target_top<D>(const Particles<D>&);                                                     \
-  template std::vector<std::size_t> points_in_region<D>(const Particles<D>&, const RegionSpec&, double);  \
-  template RegionStats region_stats<D>(const Particles<D>&, const std::vector<std::size_t>&, const std::string&, \
-                                       const HugoniotTemperature*);                                       \
-  template void macro_averages<D>(const Particles<D>&, double, double, bool, double, RegionStats&);          \
-  template std::vector<RegionStats> sample_regions<D>(const Particles<D>&, const std::vector<RegionSpec>&, \
-                                                      const HugoniotTemperature*, double);
-MPMSHOCK_INSTANTIATE(2)
-MPMSHOCK_INSTANTIATE(3)
-#undef MPMSHOCK_INSTANTIATE
+template std::vector<RegionStats> sample_regions<2>(const Particles<2>&, const std::vector<RegionSpec>&,
+                                                    const HugoniotTemperature*, double, const Comm&);
+template std::vector<RegionStats> sample_regions<3>(const Particles<3>&, const std::vector<RegionSpec>&,
+                                                    const HugoniotTemperature*, double, const Comm&);
 
 }  // namespace mpmshock

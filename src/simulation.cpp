@@ -126,7 +126,7 @@ StepStatus Simulation<D>::step(double dt) {
   clock_.time += dt;
   ++clock_.steps;
   clock_.max_signal = std::max(update.max_signal, unreached_.signal());
-  clock_.work_mismatch += update.work_mismatch;
+  clock_.work_mismatch += update.work_mismatch.value();
   if (update.first_bad != ~std::size_t{0}) return {StepStatus::Code::bad_state, update.first_bad};
   if (left != kNoPoint) return {StepStatus::Code::left_grid, left};
   for (auto& e : effects_)

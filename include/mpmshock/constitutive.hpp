@@ -6,11 +6,14 @@
 // pure and grid-free, over the law types the model chose, so tests drive it directly.
 #pragma once
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
 
+#include "mpmshock/exact_sum.hpp"
 #include "mpmshock/model.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
@@ -116,7 +119,7 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
 struct StressUpdateResult {
   double max_signal = 0.0;                  // fastest |v| + sound (+ viscous) speed, for the next dt
   std::size_t first_bad = ~std::size_t{0};  // lowest index of a point in a bad state, if any
-  double work_mismatch = 0.0;               // sum of m (work - own trapezoid work) over the points [J]
+  ExactSum work_mismatch;                   // sum of m (work - own trapezoid work) over the points [J]
 };
 
 // The update of every point, for one choice of laws.
@@ -129,10 +132,11 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
   double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};
   const double speed_limit2 = model.speed_limit * model.speed_limit;
-  // Per-chunk sums of the mismatch: a chunk is always kChunk consecutive points from range.begin run
-  // in order by one thread, so the total (summed over chunks in order) is the same for any thread
-  // count, and no two threads add to one sum.
-  std::vector<double> mismatch((range.end - range.begin + kChunk - 1) / kChunk, 0.0);
+  // The mismatch summed exactly, a sum per thread: the same bits for any thread and rank count.
+  struct alignas(64) ThreadSum {
+    ExactSum sum;
+  };
+  std::vector<ThreadSum> mismatch(static_cast<std::size_t>(omp_get_max_threads()));
   const bool stores = pts.stores_cold_work();       // taylor_quinney < 1
   const bool heats = pts.tracks_plastic_heat();     // temperature_model = paper
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(max : max_signal) reduction(min : first_bad)
@@ -170,13 +174,13 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
       if (stores) pts.E_stored[p] = st.E_stored;
       if (heats) pts.plastic_heat[p] = st.plastic_heat;
     }
-    mismatch[(p - range.begin) / kChunk] += pts.m[p] * st.work_mismatch;
+    mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum.add(pts.m[p] * st.work_mismatch);
     const double speed2 = dot(pts.v[p], pts.v[p]);
     if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;
     max_signal = std::max(max_signal, std::sqrt(speed2) + signal);
   }
-  double total_mismatch = 0.0;
-  for (double chunk : mismatch) total_mismatch += chunk;
+  ExactSum total_mismatch;
+  for (const ThreadSum& t : mismatch) total_mismatch += t.sum;
   return {max_signal, first_bad, total_mismatch};
 }
 

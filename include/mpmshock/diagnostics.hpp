@@ -1,7 +1,9 @@
-// Conserved totals of the material points, summed in a fixed order so that the numbers do not
-// depend on the thread count.
+// Conserved totals of the material points, summed exactly (exact_sum.hpp) so that the numbers do
+// not depend on the thread count or on how the points are shared between MPI ranks.
 #pragma once
 
+#include "mpmshock/comm.hpp"
+#include "mpmshock/exact_sum.hpp"
 #include "mpmshock/particles.hpp"
 
 namespace mpmshock {
@@ -15,7 +17,8 @@ struct Totals {
   double total_energy() const { return kinetic + internal; }
 };
 
+// The totals of the points on every rank of `comm` (each rank passes its own points).
 template <int D>
-Totals compute_totals(const Particles<D>& p);
+Totals compute_totals(const Particles<D>& p, const Comm& comm = Comm::world());
 
 }  // namespace mpmshock

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "mpmshock/comm.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/temperature.hpp"
@@ -37,28 +38,13 @@ struct RegionStats {
   double macro_density = 0.0, macro_pressure = 0.0, macro_normal_stress = 0.0;
 };
 
-// The points of a region, in storage order. `y_top` is the highest target point.
-template <int D>
-std::vector<std::size_t> points_in_region(const Particles<D>& p, const RegionSpec& region, double y_top);
-
-// Highest y of the target's points.
-template <int D>
-double target_top(const Particles<D>& p);
-
-// Statistics over the given points; temperature is NaN when `thermal` is null. Empty: NaN means.
-template <int D>
-RegionStats region_stats(const Particles<D>& p, const std::vector<std::size_t>& points, const std::string& name,
-                         const HugoniotTemperature* thermal);
-
-// The macroscopic averages of a band [lo, hi] (target points only, or all) over the cross-section
-// (the column's width in 2D, width x depth in 3D).
-template <int D>
-void macro_averages(const Particles<D>& p, double lo, double hi, bool target_only, double cross_section,
-                    RegionStats& s);
-
+// The statistics of every region over the points of all ranks of `comm` (each rank passes its own);
+// temperature is NaN when `thermal` is null, and an empty region has NaN means. Every sum is exact
+// (exact_sum.hpp): the same bits on any number of threads and ranks.
 template <int D>
 std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector<RegionSpec>& regions,
-                                        const HugoniotTemperature* thermal, double cross_section);
+                                        const HugoniotTemperature* thermal, double cross_section,
+                                        const Comm& comm = Comm::world());
 
 // Squared rotation |curl v|^2 of a velocity gradient (the paper's Rot^2).
 inline double rotation2(const Mat<2>& L) {

@@ -1,0 +1,116 @@
+// Exact sums of doubles, the same bits in whatever order the terms come: what makes a sum over
+// material points independent of how the points are shared between threads and MPI ranks.
+//
+// Every finite double is an integer multiple of 2^-1074 below 2^1024, so a sum of them is an integer
+// in those units. ExactSum keeps it as 68 signed 64-bit digits of 32 bits each (digit k weighs
+// 2^(32k - 1074)); adding a double adds its 53-bit significand, shifted, into three digits, with no
+// rounding. The digits absorb 2^30 additions before carries must be passed up, so normalising is rare.
+// Two sums merge by adding digits (integers: exact and commutative), which is also how MPI combines
+// them (comm.hpp). value() rounds the exact total once, from its canonical digits, so the result
+// depends on the terms alone, never on their order; it is within one unit in the last place of the
+// exact sum. NaN and infinities are counted apart and give what IEEE addition would: NaN if any
+// term is NaN or both infinities occur, else the infinity.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace mpmshock {
+
+class ExactSum {
+ public:
+  static constexpr int kDigits = 68;  // 2046 exponents + 53 bits + carries, in 32-bit digits
+  // The digits and the counts of NaN, +inf and -inf: all of the state, as integers to add.
+  static constexpr int kWords = kDigits + 3;
+
+  ExactSum() { words_.fill(0); }
+
+  void add(double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    const int exponent = static_cast<int>((bits >> 52) & 0x7ff);
+    if (exponent == 0x7ff) {  // NaN or infinity
+      const bool nan = (bits & ((std::uint64_t{1} << 52) - 1)) != 0;
+      ++words_[nan ? kDigits : (bits >> 63 ? kDigits + 2 : kDigits + 1)];
+      return;
+    }
+    std::uint64_t significand = bits & ((std::uint64_t{1} << 52) - 1);
+    if (exponent != 0) significand |= std::uint64_t{1} << 52;
+    if (significand == 0) return;
+    // x = significand * 2^(offset - 1074), offset = max(exponent, 1) - 1 in [0, 2045].
+    const int offset = (exponent == 0 ? 1 : exponent) - 1;
+    const int digit = offset >> 5, shift = offset & 31;
+    // significand << shift has up to 85 bits: 64 in `bits64`, the rest in `high`.
+    const std::uint64_t bits64 = significand << shift;
+    const auto low = static_cast<std::int64_t>(bits64 & 0xffffffffu);
+    const auto mid = static_cast<std::int64_t>(bits64 >> 32);
+    const auto high = static_cast<std::int64_t>(shift == 0 ? 0 : significand >> (64 - shift));
+    if (bits >> 63) {
+      words_[digit] -= low, words_[digit + 1] -= mid, words_[digit + 2] -= high;
+    } else {
+      words_[digit] += low, words_[digit + 1] += mid, words_[digit + 2] += high;
+    }
+    if (++additions_ == kAdditionsBeforeCarry) carry();
+  }
+
+  ExactSum& operator+=(const ExactSum& other) {
+    carry();
+    ExactSum o = other;
+    o.carry();
+    for (int k = 0; k < kWords; ++k) words_[k] += o.words_[k];
+    carry();
+    return *this;
+  }
+
+  // The total rounded once to a double (NaN or an infinity as IEEE addition gives them).
+  double value() const {
+    const std::int64_t nans = words_[kDigits], plus = words_[kDigits + 1], minus = words_[kDigits + 2];
+    if (nans > 0 || (plus > 0 && minus > 0)) return std::nan("");
+    if (plus > 0) return HUGE_VAL;
+    if (minus > 0) return -HUGE_VAL;
+    ExactSum c = *this;
+    c.carry();
+    double sign = 1.0;
+    if (c.words_[kDigits - 1] < 0) {  // negative: round its magnitude
+      for (int k = 0; k < kDigits; ++k) c.words_[k] = -c.words_[k];
+      c.carry();
+      sign = -1.0;
+    }
+    int top = kDigits - 1;
+    while (top >= 0 && c.words_[top] == 0) --top;
+    if (top < 0) return 0.0;
+    // Three digits hold 65 to 96 significant bits: enough for one rounding to 53 that depends on the
+    // canonical digits alone.
+    double total = 0.0;
+    for (int k = top; k >= 0 && k > top - 3; --k)
+      total += std::ldexp(static_cast<double>(c.words_[k]), 32 * k - 1074);
+    return sign * total;
+  }
+
+  // The state as integers, for a sum across processes (add word by word, then from_words).
+  const std::array<std::int64_t, kWords>& words() const { return words_; }
+  static ExactSum from_words(const std::int64_t* words) {
+    ExactSum s;
+    for (int k = 0; k < kWords; ++k) s.words_[k] = words[k];
+    s.carry();
+    return s;
+  }
+  // Canonical form (each digit but the top one in [0, 2^32)), so that words() can be added.
+  void carry() {
+    for (int k = 0; k + 1 < kDigits; ++k) {
+      const std::int64_t up = words_[k] >> 32;  // floor division by 2^32
+      words_[k] -= up * (std::int64_t{1} << 32);
+      words_[k + 1] += up;
+    }
+    additions_ = 0;
+  }
+
+ private:
+  static constexpr int kAdditionsBeforeCarry = 1 << 30;
+  std::array<std::int64_t, kWords> words_;
+  int additions_ = 0;
+};
+
+}  // namespace mpmshock
