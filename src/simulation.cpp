@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <sstream>
 
@@ -24,6 +25,8 @@ template <int D, class Shape, class Eos, class Strength, class Viscosity, class 
 Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction, bool conduction) {
   constexpr bool stress = Strength::has_stress;
   Kernels<D> k{};
+  k.support = Shape::support;
+  k.first_row = Shape::template first_row<D>;
   k.bin = bin_points<D, Shape>;
   k.to_grid = particles_to_grid<D, Shape, stress>;
   const bool musl = scheme == UpdateScheme::musl, blend = flip_fraction < 1.0;
@@ -64,19 +67,36 @@ void print_vector(std::ostream& out, const Vec<D>& v) {
   out << ")";
 }
 
+// The strips StripBins cuts a grid into.
+template <int D>
+int strip_count(const GridGeometry<D>& g) {
+  return (g.ny - 1) / StripBins::kRowsPerStrip + 1;
+}
+
 }  // namespace
 
 template <int D>
-Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock)
-    : model_(scene), points_(std::move(points)), grid_(grid), kernels_(kernels_for<D>(model_)),
+Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock,
+                          const Comm& comm)
+    : comm_(&comm), whole_geo_(grid.whole()), slabs_(strip_count(grid)), model_(scene), points_(std::move(points)),
+      grid_(comm.parallel() ? GridGeometry<D>{} : grid), kernels_(kernels_for<D>(model_)),
       effects_(effects_for<D>(model_, grid)), unreached_(points_.size()), clock_(clock) {
-  points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
+  total_points_ = points_.size();  // every rank is given all of them
   for (const auto& e : effects_)
     if (const auto* plane = dynamic_cast<const SymmetryPlane<D>*>(e.get())) plane_ = plane;
   if (model_.symmetry_plane && std::find(points_.body.begin(), points_.body.end(), Body::flyer) != points_.body.end())
     throw std::logic_error("symmetry = on simulates the target's points alone (build_initial_state gives them)");
+  if (comm.parallel()) {
+    // Slabs of as many points each; the first step's end re-balances them by what it computes.
+    std::vector<std::int64_t> work(static_cast<std::size_t>(slabs_.strips()), 0);
+    for (std::size_t p = 0; p < points_.size(); ++p) ++work[static_cast<std::size_t>(strip_of(points_.x[p][1]))];
+    take_slab(Decomposition::balanced(work, comm.size(), first_strip_end_needed()));
+    keep_own_points(points_);
+  }
+  unreached_ = UnreachedMaterial<D>(total_points_);
+  points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
   if (model_.skip_unreached && clock.unreached_tail != Clock::kNoneSaved)
-    unreached_ = UnreachedMaterial<D>(scene, model_, points_, clock.unreached_head, clock.unreached_tail);
+    unreached_ = UnreachedMaterial<D>(scene, model_, points_, clock.unreached_head, clock.unreached_tail, comm);
   remember_unreached();
   heat_.conductivity = model_.conductivity;
   heat_.specific_heat = scene.material.specific_heat;
@@ -85,11 +105,11 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
 }
 
 template <int D>
-Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points)
-    : Simulation(scene, grid, std::move(points), Clock{}) {
-  if (model_.skip_unreached) unreached_ = UnreachedMaterial<D>(scene, model_, points_);
+Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Comm& comm)
+    : Simulation(scene, grid, std::move(points), Clock{}, comm) {
+  if (model_.skip_unreached) unreached_ = UnreachedMaterial<D>(scene, model_, points_, comm);
   remember_unreached();
-  clock_.max_signal = initial_signal_speed(points_, model_);
+  clock_.max_signal = comm.max(initial_signal_speed(points_, model_));
 }
 
 template <int D>
@@ -99,21 +119,120 @@ void Simulation<D>::remember_unreached() {
 }
 
 template <int D>
+int Simulation<D>::first_strip_end_needed() const {
+  // The symmetry plane folds the rows within a stencil of y = 0 onto each other on rank 0: it must
+  // own them all, not share them.
+  if (!model_.symmetry_plane) return 0;
+  const int plane_row = static_cast<int>(std::lround(-whole_geo_.y_min * whole_geo_.inv_h));
+  return (plane_row + kernels_.support) / StripBins::kRowsPerStrip + 2;
+}
+
+template <int D>
+int Simulation<D>::strip_of(double y) const {
+  const int last_row = whole_geo_.ny - kernels_.support;  // as StripBins clamps a point off the grid
+  const int row = std::clamp(kernels_.first_row(y, whole_geo_), 0, last_row);
+  return row / StripBins::kRowsPerStrip;
+}
+
+template <int D>
+void Simulation<D>::take_slab(const Decomposition& slabs) {
+  slabs_ = slabs;
+  const int rank = comm_->rank(), first = slabs.first_strip(rank), end = slabs.end_strip(rank);
+  const int rows0 = first * StripBins::kRowsPerStrip;
+  const int rows1 = std::min(whole_geo_.ny, end * StripBins::kRowsPerStrip + kernels_.support - 1);
+  grid_ = Grid<D>(whole_geo_.holding(rows0, rows1));
+  halo_ = Halo<D>(*comm_, grid_.geo, first, end, StripBins::kRowsPerStrip, kernels_.support, rank > 0,
+                  rank + 1 < comm_->size());
+}
+
+template <int D>
+void Simulation<D>::keep_own_points(Particles<D>& all) {
+  const int rank = comm_->rank();
+  std::vector<char> keep(all.size());
+  for (std::size_t p = 0; p < all.size(); ++p) keep[p] = slabs_.owner(strip_of(all.x[p][1])) == rank;
+  keep_points(all, keep);
+}
+
+template <int D>
+void Simulation<D>::migrate() {
+  // A point moves under a cell per step and a slab is at least two strips, so a point that left its
+  // slab is in a neighbour's. After new slabs points may be farther from home: they hop until home.
+  const int rank = comm_->rank(), size = comm_->size();
+  const int below = rank > 0 ? rank - 1 : -1, above = rank + 1 < size ? rank + 1 : -1;
+  for (;;) {
+    std::vector<std::size_t> down, up;
+    std::vector<char> keep(points_.size(), 1);
+    for (std::size_t p = 0; p < points_.size(); ++p) {
+      const int owner = slabs_.owner(strip_of(points_.x[p][1]));
+      if (owner == rank) continue;
+      (owner < rank ? down : up).push_back(p);
+      keep[p] = 0;
+    }
+    const std::int64_t moving = comm_->sum(static_cast<std::int64_t>(down.size() + up.size()));
+    if (moving == 0) return;
+    const std::vector<char> from_above = comm_->exchange(below, pack_points(points_, down), above);
+    const std::vector<char> from_below = comm_->exchange(above, pack_points(points_, up), below);
+    keep_points(points_, keep);
+    unpack_points(points_, from_above);
+    unpack_points(points_, from_below);
+    sort_by_id(points_);
+  }
+}
+
+template <int D>
+std::vector<std::int64_t> Simulation<D>::work_per_strip() const {
+  std::vector<std::int64_t> work(static_cast<std::size_t>(slabs_.strips()), 0);
+  for (std::size_t p = 0; p < points_.size(); ++p)
+    work[static_cast<std::size_t>(strip_of(points_.x[p][1]))] +=
+        unreached_.unreached(points_, p) ? 1 : Decomposition::kComputedWeight;
+  comm_->sum(work.data(), static_cast<int>(work.size()));
+  return work;
+}
+
+template <int D>
+void Simulation<D>::rebalance() {
+  // Every kBalanceSteps steps the slabs follow the work, when that evens it out noticeably.
+  constexpr std::int64_t kBalanceSteps = 20;
+  if (clock_.steps - last_balance_step_ < kBalanceSteps && clock_.steps > 1) return;
+  last_balance_step_ = clock_.steps;
+  const std::vector<std::int64_t> work = work_per_strip();
+  const Decomposition better = Decomposition::balanced(work, comm_->size(), first_strip_end_needed());
+  if (better == slabs_ || slabs_.imbalance(work) < better.imbalance(work) + 0.02) return;
+  take_slab(better);
+  migrate();
+}
+
+template <int D>
+StepStatus Simulation<D>::agree(const StepStatus& mine) const {
+  if (!comm_->parallel()) return mine;
+  // The failure of the lowest id (then the lowest code), as one process finds it first.
+  double key = mine.ok() ? -std::numeric_limits<double>::infinity()
+                         : -(static_cast<double>(mine.point) * 4.0 + static_cast<double>(mine.code));
+  key = comm_->max(key);
+  if (key == -std::numeric_limits<double>::infinity()) return {};
+  const double k = -key;
+  const auto id = static_cast<std::size_t>(k / 4.0);
+  return {static_cast<StepStatus::Code>(static_cast<int>(k - 4.0 * static_cast<double>(id))), id};
+}
+
+template <int D>
 StepStatus Simulation<D>::step(double dt) {
-  const PointRange reached = unreached_.computed();                    // all but what nothing has reached
-  if (!kernels_.bin(bins_, points_, reached, grid_.geo))               // strips for race-free scatter
-    return {StepStatus::Code::left_grid, points_.size()};             // moves check this; here only a bad restart
+  const PointRange reached = unreached_.computed(points_);             // all but what nothing has reached
+  const bool binned = kernels_.bin(bins_, points_, reached, grid_.geo);  // strips for race-free scatter
+  if (const StepStatus s = agree(binned ? StepStatus{} : StepStatus{StepStatus::Code::left_grid, kNoPoint});
+      !s.ok())
+    return s;                                                          // moves check this; here only a bad restart
   const RowRange rows = bins_.rows();
   const bool musl = model_.scheme == UpdateScheme::musl;
   grid_.reset(rows);                                                   // reset grid
-  kernels_.to_grid(points_, bins_, grid_, stencils_);                  // P2G: m_i, p_i, f_i (and N_ip)
+  kernels_.to_grid(points_, bins_, grid_, stencils_, halo_);           // P2G: m_i, p_i, f_i (and N_ip)
   for (auto& e : effects_) e->after_to_grid(grid_, rows);              //   (symmetry plane: the mirror's share)
   if (kernels_.conduct)                                                //   heat conduction: E_p
-    kernels_.conduct(points_, reached, bins_, grid_, stencils_, *model_.thermal, heat_, plane_, dt);
+    kernels_.conduct(points_, reached, bins_, grid_, stencils_, halo_, *model_.thermal, heat_, plane_, dt);
   update_grid_momentum(grid_, rows, dt);                               // a_i, v_i^{n+1}
   for (auto& e : effects_) e->after_grid_update(grid_, rows, dt);      //   (boundary conditions)
-  kernels_.velocity_to_points(points_, reached, bins_, grid_, stencils_, dt,  // G2P: FLIP (/PIC) v_p (MUSL: re-map)
-                              model_.flip_fraction);
+  kernels_.velocity_to_points(points_, reached, bins_, grid_, stencils_, halo_, dt,  // G2P: FLIP (/PIC) v_p
+                              model_.flip_fraction);                   //   (MUSL: re-map m_p v_p)
   if (musl) {
     for (auto& e : effects_) e->before_remap(grid_, rows);
     remap_grid_velocity(grid_, rows);                                  // MUSL: v~_i
@@ -122,24 +241,54 @@ StepStatus Simulation<D>::step(double dt) {
   const std::size_t left = kernels_.gradient_work_and_move(            // L_p, work_p, x_p
       points_, reached, grid_, stencils_, musl ? grid_.v_remap : grid_.v, dt);
   unreached_.advance(points_, dt);                                     //   the rest: x_p += v0 dt
-  const StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt);  // E, F, s, P, q
+  StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt);  // E, F, s, P, q
+  const StepStatus failed = agree_on(update, left);                    // the ranks' maxima, sums and failures
   clock_.time += dt;
   ++clock_.steps;
   clock_.max_signal = std::max(update.max_signal, unreached_.signal());
   clock_.work_mismatch += update.work_mismatch.value();
-  if (update.first_bad != ~std::size_t{0}) return {StepStatus::Code::bad_state, update.first_bad};
-  if (left != kNoPoint) return {StepStatus::Code::left_grid, left};
+  if (!failed.ok()) return failed;
   for (auto& e : effects_)
-    if (const StepStatus s = e->after_point_update(points_, dt); !s.ok()) return s;
+    if (const StepStatus s = agree(with_id(e->after_point_update(points_, dt))); !s.ok()) return s;
   unreached_.follow(points_);                                          // compute what the step reached
+  if (comm_->parallel()) {
+    migrate();                                                         // points into their new slabs
+    rebalance();                                                       //   and slabs to the work
+  }
   remember_unreached();
   return {};
 }
 
 template <int D>
+StepStatus Simulation<D>::agree_on(StressUpdateResult& update, std::size_t left) const {
+  const auto id_of = [&](std::size_t p) { return p < points_.size() ? static_cast<std::size_t>(points_.id[p]) : p; };
+  const std::size_t bad = id_of(update.first_bad), outside = id_of(left);
+  if (!comm_->parallel()) {
+    if (bad != kNoPoint) return {StepStatus::Code::bad_state, bad};
+    if (outside != kNoPoint) return {StepStatus::Code::left_grid, outside};
+    return {};
+  }
+  const double none = -std::numeric_limits<double>::infinity();
+  double agreed[3] = {update.max_signal, bad == kNoPoint ? none : -static_cast<double>(bad),
+                      outside == kNoPoint ? none : -static_cast<double>(outside)};
+  comm_->max(agreed, 3);
+  comm_->sum(&update.work_mismatch, 1);
+  update.max_signal = agreed[0];
+  if (agreed[1] != none) return {StepStatus::Code::bad_state, static_cast<std::size_t>(-agreed[1])};
+  if (agreed[2] != none) return {StepStatus::Code::left_grid, static_cast<std::size_t>(-agreed[2])};
+  return {};
+}
+
+template <int D>
+StepStatus Simulation<D>::with_id(StepStatus s) const {
+  if (!s.ok() && s.point < points_.size()) s.point = points_.id[s.point];
+  return s;
+}
+
+template <int D>
 StepStatus Simulation<D>::check_at_sample() {
   for (auto& e : effects_)
-    if (const StepStatus s = e->at_sample(points_); !s.ok()) return s;
+    if (const StepStatus s = agree(with_id(e->at_sample(points_))); !s.ok()) return s;
   return {};
 }
 
@@ -148,34 +297,47 @@ std::string Simulation<D>::describe(const StepStatus& status) const {
   if (status.ok()) return "ok";
   std::ostringstream out;
   const Particles<D>& pts = points_;
-  const std::size_t p = status.point;
+  const std::size_t p = status.point < kNoPoint ? index_of_id(pts, static_cast<std::uint32_t>(status.point)) : kNoPoint;
   // The id the outputs give the point: with symmetry = on the mirrored flyer's come first.
-  auto id = [&](std::size_t q) { return pts.id[q] + (model_.symmetry_plane ? pts.size() : 0); };
+  auto id = [&](std::size_t q) { return pts.id[q] + (model_.symmetry_plane ? total_points_ : 0); };
   out << "step " << clock_.steps << ", t = " << clock_.time << " s: ";
-  if (p >= pts.size()) {
+  if (status.point == kNoPoint) {
     out << "a material point is outside the grid";
-    return out.str();
+    return comm_->root() ? out.str() : std::string();
   }
+  if (p < pts.size()) describe_point(out, status.code, p, id(p));
+  else out.str("");  // another rank holds the point and tells rank 0
+  std::string text = out.str();
+  if (!comm_->parallel()) return text;
+  const std::vector<std::vector<char>> told = comm_->gather(std::vector<char>(text.begin(), text.end()));
+  for (const std::vector<char>& t : told)
+    if (!t.empty()) return std::string(t.begin(), t.end());
+  return std::string();
+}
+
+template <int D>
+void Simulation<D>::describe_point(std::ostream& out, StepStatus::Code code, std::size_t p, std::size_t id) const {
+  const Particles<D>& pts = points_;
   const double J = pts.J(p);
-  switch (status.code) {
+  switch (code) {
     case StepStatus::Code::left_grid:
-      out << "material point " << id(p) << " left the grid (y range " << grid_.geo.y_min << " .. "
-          << grid_.geo.y_max() << " m); enlarge grid_margin";
+      out << "material point " << id << " left the grid (y range " << whole_geo_.y_min << " .. "
+          << whole_geo_.y_max() << " m); enlarge grid_margin";
       break;
     case StepStatus::Code::bad_state:
-      out << "material point " << id(p) << " reached a non-physical state";
+      out << "material point " << id << " reached a non-physical state";
       if (!(J > 0.0)) out << " (J = det F <= 0: the point turned inside out)";
       else if (!(J > model_.limiting_compression())) out << " (compressed past the Hugoniot's limit J = 1 - 1/s)";
       else if (!std::isfinite(pts.P[p]) || !std::isfinite(pts.E[p])) out << " (non-finite pressure or energy)";
       else out << " (runaway speed above " << model_.speed_limit << " m/s)";
       break;
     case StepStatus::Code::below_zero_kelvin:
-      out << "material point " << id(p) << " reached a non-physical state (temperature "
+      out << "material point " << id << " reached a non-physical state (temperature "
           << model_.thermal->temperature(pts.material_J(p), pts.thermal_energy(p)) << " K: its internal energy " << pts.E[p]
           << " J/kg is below the 0 K isotherm at J = " << J << "); at ";
       print_vector(out, pts.x[p]);
       out << " m with pressure " << pts.P[p] << " Pa. Typical cause: a shock without enough artificial viscosity";
-      return out.str();
+      return;
     case StepStatus::Code::ok: break;
   }
   out << "\n  position ";
@@ -187,7 +349,6 @@ std::string Simulation<D>::describe(const StepStatus& status) const {
   for (int i = 0; i < D; ++i)
     for (int j = 0; j < D; ++j) out << (j ? ", " : (i ? "; " : "")) << pts.L[p](i, j);
   out << ") 1/s";
-  return out.str();
 }
 
 template class Simulation<2>;

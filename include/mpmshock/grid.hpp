@@ -1,6 +1,8 @@
 // The background grid: regular cubic (square) cells of size h; periodic in x (and z in 3D), free
 // (unconstrained) in y. Node (i, j, k) sits at (i h, y_min + j h, k h). Nodes are stored with y
-// slowest, so the nodes of a range of y rows are one contiguous range.
+// slowest, so the nodes of a range of y rows are one contiguous range. A process holds the rows
+// [row0, row0 + rows_held()) of the ny (all of them on one rank; its slab's on an MPI rank:
+// decomposition.hpp); rows keep their global numbers, and row_start() finds a held row's nodes.
 #pragma once
 
 #include <cstddef>
@@ -19,6 +21,8 @@ struct GridGeometry {
   double inv_h = 0.0;
   double y_min = 0.0;  // y of node row 0
   double lp = 0.0;     // GIMP: initial half-width of a material point's domain, in cells
+  int row0 = 0;        // the first node row held here
+  int held_rows = -1;  // node rows held from row0; -1: all of them
 
   double width() const { return nx * h; }
   double depth() const { return nz * h; }
@@ -28,9 +32,20 @@ struct GridGeometry {
   // The period of a periodic axis (x, and z in 3D).
   double period(int axis) const { return axis == 0 ? width() : depth(); }
   std::size_t nodes_per_row() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(nz); }
-  std::size_t nodes() const { return nodes_per_row() * static_cast<std::size_t>(ny); }
-  // The first node of row j (the nodes of rows [a, b) are [row_start(a), row_start(b))).
-  std::size_t row_start(int row) const { return static_cast<std::size_t>(row) * nodes_per_row(); }
+  int rows_held() const { return held_rows < 0 ? ny - row0 : held_rows; }
+  // The nodes held here (all of the grid's on one rank).
+  std::size_t nodes() const { return nodes_per_row() * static_cast<std::size_t>(rows_held()); }
+  // The first node of held row j (the nodes of rows [a, b) are [row_start(a), row_start(b))).
+  std::size_t row_start(int row) const { return static_cast<std::size_t>(row - row0) * nodes_per_row(); }
+  // The same grid holding only the rows [first, end).
+  GridGeometry holding(int first, int end) const {
+    GridGeometry g = *this;
+    g.row0 = first;
+    g.held_rows = end - first;
+    return g;
+  }
+  // The same grid holding every row.
+  GridGeometry whole() const { return holding(0, ny); }
 };
 
 // A range of node rows [begin, end): the rows a step's points touch.

@@ -23,13 +23,16 @@
 // With a symmetry plane (symmetry = on) each of the three nodal sums is folded across it
 // (SymmetryPlane::fold_scalar) before it is read: the temperature field and heat rates are even in y,
 // so the mirror flyer's share at a node is the target's own share at the mirror node, and the plane
-// is adiabatic (no heat crosses it), as in the whole impact by symmetry.
+// is adiabatic (no heat crosses it), as in the whole impact by symmetry. On MPI ranks each sum is
+// also completed across the rows two ranks share (halo.hpp) before it is folded or read.
 #pragma once
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/halo.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
@@ -51,8 +54,8 @@ struct HeatConduction {
 // `plane`: the symmetry plane (symmetry = on), or null.
 template <int D, class Shape>
 void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
-                  const StencilStore<D>& store, const HugoniotTemperature& thermal, HeatConduction& h,
-                  const SymmetryPlane<D>* plane, double dt) {
+                  const StencilStore<D>& store, const Halo<D>& halo, const HugoniotTemperature& thermal,
+                  HeatConduction& h, const SymmetryPlane<D>* plane, double dt) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();  // P2G's, of the same x and F
   const RowRange rows = bins.rows();
@@ -67,16 +70,23 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
 
   // The step's scratch (work is written later in the step) holds T_p, then d_p.
   std::vector<double>& T = pts.work;
+  // Each nodal sum is summed across the rows MPI ranks share (halo.hpp) before it is read.
+  auto summed_across_ranks = [&](std::vector<double>& field) {
+    return std::make_pair([&] { halo.between_colours(field); }, [&] { halo.after_colours(field); });
+  };
+  halo.zero(h.node_heat, h.node_rate);
+  const auto [heat_between, heat_after] = summed_across_ranks(h.node_heat);
   bins.scatter([&](std::size_t p) {  // 1. m_i T_i
     T[p] = thermal.of_point(pts, p);
     const double mT = pts.m[p] * T[p];
     for_each_node(stencils[p], geo,
                   [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * mT; });
-  });
+  }, heat_between, heat_after);
   fold(h.node_heat);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = first; i < last; ++i) h.node_heat[i] = g.m[i] > 0.0 ? h.node_heat[i] / g.m[i] : 0.0;
 
+  const auto [rate_between, rate_after] = summed_across_ranks(h.node_rate);
   bins.scatter([&](std::size_t p) {  // 2. and 3.
     const auto& st = stencils[p];
     Vec<D> grad{};
@@ -85,7 +95,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
     });
     const double kV = h.conductivity * pts.volume(p);
     for_each_node(st, geo, [&](std::size_t i, double, const Vec<D>& dN) { h.node_rate[i] -= kV * dot(grad, dN); });
-  });
+  }, rate_between, rate_after);
   fold(h.node_rate);
 
   // 4a. d_p = T_p - sum_i N_ip T_i, in place of T_p.
@@ -101,11 +111,12 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
   // O(h^2 grad^2 T), which is not sub-cell structure): d_i = sum_p N_ip m_p d_p / m_i.
 #pragma omp parallel for schedule(static)
   for (std::size_t i = first; i < last; ++i) h.node_heat[i] = 0.0;
+  halo.zero(h.node_heat);
   bins.scatter([&](std::size_t p) {
     const double md = pts.m[p] * d[p];
     for_each_node(stencils[p], geo,
                   [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * md; });
-  });
+  }, heat_between, heat_after);
   fold(h.node_heat);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = first; i < last; ++i) h.node_heat[i] = g.m[i] > 0.0 ? h.node_heat[i] / g.m[i] : 0.0;

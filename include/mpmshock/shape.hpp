@@ -188,15 +188,13 @@ template <int S, int D, class F>
 [[gnu::always_inline]] inline void for_each_node(const Stencil<S, D>& st, const GridGeometry<D>& g, F&& f) {
   for (int b = 0; b < S; ++b) {
     if constexpr (D == 2) {
-      const std::size_t row = static_cast<std::size_t>(st.row0 + b) * static_cast<std::size_t>(g.nx);
+      const std::size_t row = g.row_start(st.row0 + b);
       for (int a = 0; a < S; ++a)
         f(row + static_cast<std::size_t>(st.column[a]), st.w[0][a] * st.w[1][b],
           Vec<2>{{st.g[0][a] * st.w[1][b], st.w[0][a] * st.g[1][b]}});
     } else {
       for (int c = 0; c < S; ++c) {
-        const std::size_t start =
-            (static_cast<std::size_t>(st.row0 + b) * static_cast<std::size_t>(g.nz) + static_cast<std::size_t>(st.layer[c])) *
-            static_cast<std::size_t>(g.nx);
+        const std::size_t start = g.row_start(st.row0 + b) + static_cast<std::size_t>(st.layer[c]) * static_cast<std::size_t>(g.nx);
         for (int a = 0; a < S; ++a) {
           const double wxy = st.w[0][a] * st.w[1][b];
           f(start + static_cast<std::size_t>(st.column[a]), wxy * st.w[2][c],

@@ -1,14 +1,24 @@
 // The explicit MPM integrator. step() is the algorithm, one phase per line; output, sampling and
 // bookkeeping live outside it (run.hpp).
+//
+// On several MPI ranks each rank simulates the material points of its slab of the grid
+// (decomposition.hpp) on the node rows it holds; the scatters pass the shared rows' sums on between
+// their colours (halo.hpp), the step's maxima and sums are agreed across the ranks, and points
+// that cross into a neighbour's slab move there after the step. Every rank then holds exactly the
+// numbers one process would, for its points: the outputs are the same bits on any number of ranks.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
+#include "mpmshock/comm.hpp"
 #include "mpmshock/constitutive.hpp"
+#include "mpmshock/decomposition.hpp"
 #include "mpmshock/grid.hpp"
+#include "mpmshock/halo.hpp"
 #include "mpmshock/heat_conduction.hpp"
 #include "mpmshock/model.hpp"
 #include "mpmshock/particles.hpp"
@@ -24,16 +34,18 @@ namespace mpmshock {
 // instantiated for the model's choices at set-up (simulation.cpp).
 template <int D>
 struct Kernels {
+  int support;  // stencil nodes per axis
+  int (*first_row)(double y, const GridGeometry<D>&);  // the node row a point's stencil starts at
   bool (*bin)(StripBins&, const Particles<D>&, PointRange, const GridGeometry<D>&);
-  void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&, StencilStore<D>&);
-  void (*velocity_to_points)(Particles<D>&, PointRange, const StripBins&, Grid<D>&, const StencilStore<D>&, double dt,
-                             double flip_fraction);
+  void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&, StencilStore<D>&, const Halo<D>&);
+  void (*velocity_to_points)(Particles<D>&, PointRange, const StripBins&, Grid<D>&, const StencilStore<D>&,
+                             const Halo<D>&, double dt, double flip_fraction);
   std::size_t (*gradient_work_and_move)(Particles<D>&, PointRange, const Grid<D>&, const StencilStore<D>&,
                                         const std::vector<Vec<D>>& u, double dt);
   StressUpdateResult (*update_points)(Particles<D>&, PointRange, const Model&, double dt);
   // Heat conduction, or null when the scene has none.
   void (*conduct)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
-                  const HugoniotTemperature&, HeatConduction&, const SymmetryPlane<D>*, double dt);
+                  const Halo<D>&, const HugoniotTemperature&, HeatConduction&, const SymmetryPlane<D>*, double dt);
 };
 
 // Where the integrator stands: all it needs, besides the points, to take the next step.
@@ -53,10 +65,12 @@ struct Clock {
 template <int D>
 class Simulation {
  public:
-  // A new run from its initial points (time 0, first time step from their state).
-  Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points);
-  // A run resumed from a snapshot's points and clock.
-  Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock);
+  // A new run from its initial points (time 0, first time step from their state). On several ranks
+  // of `comm` each rank passes all the points and keeps those of its slab.
+  Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Comm& comm = Comm::world());
+  // A run resumed from a snapshot's points (all of them, on every rank) and clock.
+  Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock,
+             const Comm& comm = Comm::world());
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
@@ -71,20 +85,54 @@ class Simulation {
   double time() const { return clock_.time; }
   std::int64_t steps() const { return clock_.steps; }
   const Clock& clock() const { return clock_; }
+  // This rank's points, in id order (all of them on one rank).
   const Particles<D>& particles() const { return points_; }
   Particles<D>& particles_for_testing() { return points_; }
+  // The points of every rank (all of them at rank 0 only: a snapshot's).
+  Particles<D> all_particles() const { return gather_points(points_, *comm_); }
+  // The points simulated on all ranks together.
+  std::size_t total_points() const { return total_points_; }
+  // This rank's grid rows (all of them on one rank).
   const Grid<D>& grid() const { return grid_; }
+  const GridGeometry<D>& whole_grid() const { return whole_geo_; }
   const Model& model() const { return model_; }
-  // Node rows the last step used; the grid's fields outside them are stale.
+  const Comm& comm() const { return *comm_; }
+  const Decomposition& decomposition() const { return slabs_; }
+  // Node rows the last step used here; the grid's fields outside them are stale.
   RowRange active_rows() const { return bins_.rows(); }
-  // The points the steps compute; the others nothing has reached yet (unreached.hpp).
-  PointRange computed_points() const { return unreached_.computed(); }
+  // This rank's points the steps compute; the others nothing has reached yet (unreached.hpp).
+  PointRange computed_points() const { return unreached_.computed(points_); }
 
-  // A readable account of a failed step or check: the point, its position and its state.
+  // A readable account of a failed step or check: the point, its position and its state (at rank
+  // 0, which gets it from the rank that holds the point; empty elsewhere). Every rank calls it.
   std::string describe(const StepStatus& status) const;
+
+  // Work per strip of every rank's points (decomposition.hpp), and the largest rank's share of it
+  // over the mean, for the benchmarks.
+  std::vector<std::int64_t> work_per_strip() const;
+  double imbalance() const { return slabs_.imbalance(work_per_strip()); }
 
  private:
   void remember_unreached();  // the unreached boundaries into the clock, for snapshots
+  // MPI: this rank's slab of `slabs`: its points (from `all`, or moved between ranks), grid rows and halo.
+  void take_slab(const Decomposition& slabs);
+  void keep_own_points(Particles<D>& all);
+  int strip_of(double y) const;
+  void migrate();     // points that crossed into a neighbour's slab move there
+  void rebalance();   // new slabs when the work has drifted
+  StepStatus agree(const StepStatus& mine) const;  // the same status on every rank: the lowest id's
+  // The step's maximum signal and work mismatch over every rank, and its failure (a bad state before
+  // a point off the grid, each of the lowest id).
+  StepStatus agree_on(StressUpdateResult& update, std::size_t left) const;
+  int first_strip_end_needed() const;
+  StepStatus with_id(StepStatus s) const;  // an effect's storage index as the point's id
+  void describe_point(std::ostream& out, StepStatus::Code code, std::size_t p, std::size_t id) const;  // rank 0's slab must reach this strip (symmetry_plane.hpp)
+  const Comm* comm_;
+  GridGeometry<D> whole_geo_;
+  Decomposition slabs_;
+  Halo<D> halo_;
+  std::size_t total_points_ = 0;
+  std::int64_t last_balance_step_ = 0;
   Model model_;
   Particles<D> points_;
   Grid<D> grid_;

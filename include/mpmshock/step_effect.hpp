@@ -22,7 +22,7 @@ struct StepStatus {
     below_zero_kelvin,  // internal energy below the 0 K isotherm (ZeroKelvinCheck)
   };
   Code code = Code::ok;
-  std::size_t point = 0;  // storage index of the offending material point
+  std::size_t point = 0;  // id of the offending material point (its storage index on one rank)
   bool ok() const { return code == Code::ok; }
 };
 

@@ -29,14 +29,22 @@ class StripBins {
   RowRange rows() const { return rows_; }
 
   // Calls f(point) for every point: strips of colour 0, then colour 1, each colour in parallel.
-  template <class F>
-  void scatter(F&& f) const {
+  // Between the colours and after the second, `between()` and `after()` run (on an MPI rank they
+  // pass the sums of the rows it shares with its neighbours on: halo.hpp).
+  template <class F, class Between, class After>
+  void scatter(F&& f, Between&& between, After&& after) const {
     for (int colour = 0; colour < 2; ++colour) {
 #pragma omp parallel for schedule(dynamic, 1)
       for (int k = colour; k < strips_; k += 2) {
         for (std::uint32_t i = start_[k]; i < start_[k + 1]; ++i) f(static_cast<std::size_t>(order_[i]));
       }
+      if (colour == 0) between();
     }
+    after();
+  }
+  template <class F>
+  void scatter(F&& f) const {
+    scatter(f, [] {}, [] {});
   }
 
  private:

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/halo.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
@@ -40,11 +41,14 @@ inline Mat<D> cauchy_stress(const Particles<D>& pts, std::size_t p) {
 }
 
 // P2G of mass, momentum and internal force; keeps each point's stencil for the rest of the step.
+// On MPI ranks the rows shared with a neighbour are summed across the two (halo.hpp).
 template <int D, class Shape, bool Strength>
-void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g, StencilStore<D>& store) {
+void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g, StencilStore<D>& store,
+                       const Halo<D>& halo) {
   const GridGeometry<D>& geo = g.geo;
   auto& stencils = store.template of<Shape::support>();
   stencils.resize(pts.size());
+  halo.zero(g.m, g.mv, g.f);
   bins.scatter([&](std::size_t p) {
     const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
     stencils[p] = st;
@@ -61,7 +65,7 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
         g.f[i][d] -= V * t;
       }
     });
-  });
+  }, [&] { halo.between_colours(g.m, g.mv, g.f); }, [&] { halo.after_colours(g.m, g.mv, g.f); });
 }
 
 // Explicit momentum update on the nodes of the given rows: a_i = f_i / m_i,
@@ -82,7 +86,8 @@ void remap_grid_velocity(Grid<D>& g, RowRange rows);
 // m_p v_p^{n+1} back to the nodes at the same stencil.
 template <int D, class Shape, bool Remap, bool Blend>
 void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const StripBins& bins, Grid<D>& g,
-                                const StencilStore<D>& store, double dt, [[maybe_unused]] double flip_fraction) {
+                                const StencilStore<D>& store, [[maybe_unused]] const Halo<D>& halo, double dt,
+                                [[maybe_unused]] double flip_fraction) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();
   auto kernel = [&](std::size_t p) {
@@ -116,7 +121,8 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
     }
   };
   if constexpr (Remap) {
-    bins.scatter(kernel);
+    halo.zero(g.mv);
+    bins.scatter(kernel, [&] { halo.between_colours(g.mv); }, [&] { halo.after_colours(g.mv); });
   } else {
 #pragma omp parallel for schedule(dynamic, kChunk)
     for (std::size_t p = range.begin; p < range.end; ++p) kernel(p);

@@ -17,10 +17,16 @@
 // margin is twice that. Only the points within 2 margins of a boundary are examined.
 // Material once computed stays computed. Before the impact (t = 0) the reached points are those at
 // the impact plane y = 0.
+//
+// The boundaries are point ids. On MPI ranks (decomposition.hpp) each rank holds some of the points,
+// in id order, so its unreached points are still its first and last ones; the boundaries move as
+// one process moves them (the first id past the margin, in id order), found by a maximum and a
+// minimum over the ranks (comm.hpp).
 #pragma once
 
 #include <cstddef>
 
+#include "mpmshock/comm.hpp"
 #include "mpmshock/model.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
@@ -32,18 +38,19 @@ class UnreachedMaterial {
  public:
   static constexpr double kMarginCells = 12.0;
 
-  // Off (or nothing known): every one of `points` is computed.
+  // Off (or nothing known): every one of `points` (of all ranks) is computed.
   explicit UnreachedMaterial(std::size_t points = 0) : points_(points), tail_(points) {}
-  // A new run's points, all in their initial state: everything farther than the margin from the
-  // impact plane is unreached.
-  UnreachedMaterial(const Scene& scene, const Model& model, const Particles<D>& pts);
-  // A run resumed with the boundaries it saved (Clock). Throws SceneError if they do not fit the
-  // points, or a point they leave out has left its initial state.
+  // A new run's points (this rank's, of all ranks of comm), all in their initial state: everything
+  // farther than the margin from the impact plane is unreached.
+  UnreachedMaterial(const Scene& scene, const Model& model, const Particles<D>& pts,
+                    const Comm& comm = Comm::world());
+  // A run resumed with the boundaries it saved (Clock). Throws SceneError (on every rank) if they do
+  // not fit the points, or a point they leave out has left its initial state.
   UnreachedMaterial(const Scene& scene, const Model& model, const Particles<D>& pts, std::size_t head,
-                    std::size_t tail);
+                    std::size_t tail, const Comm& comm = Comm::world());
 
-  // The points a step computes.
-  PointRange computed() const { return {head_, tail_}; }
+  // The points of `pts` (this rank's, in id order) a step computes: those with ids in [head, tail).
+  PointRange computed(const Particles<D>& pts) const;
   bool any() const { return head_ > 0 || tail_ < points_; }
   std::size_t head() const { return head_; }
   std::size_t tail() const { return tail_; }
@@ -54,13 +61,21 @@ class UnreachedMaterial {
   void advance(Particles<D>& pts, double dt) const;
   // After a step: computes every point within the margin of what has been reached.
   void follow(const Particles<D>& pts);
+  // The weights of a rank's work (decomposition.hpp) count unreached points apart.
+  bool unreached(const Particles<D>& pts, std::size_t p) const {
+    return on_ && (pts.id[p] < head_ || pts.id[p] >= tail_);
+  }
 
   // A point that has left its initial state (velocity or deformation); unreached points never have.
   bool reached(const Particles<D>& pts, std::size_t p) const;
 
  private:
   // The constants of a scene's unreached material, nothing unreached yet.
-  UnreachedMaterial(const Scene& scene, std::size_t points, std::size_t flyer);
+  UnreachedMaterial(const Scene& scene, const Particles<D>& pts, const Comm& comm);
+  // Moves the boundaries past every point within the margin of the reached points' highest y in
+  // the target (`top`) and lowest in the flyer (`bottom`), as a scan in id order would.
+  void extend(const Particles<D>& pts, double top, double bottom);
+  const Comm* comm_ = &Comm::world();
   bool on_ = false;
   std::size_t points_ = 0, flyer_ = 0;  // all points; the flyer's [0, flyer_)
   std::size_t head_ = 0, tail_ = 0;     // computed: [head_, tail_)

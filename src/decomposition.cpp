@@ -1,0 +1,154 @@
+#include "mpmshock/decomposition.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+
+#include "mpmshock/scene.hpp"
+
+namespace mpmshock {
+
+Decomposition Decomposition::balanced(const std::vector<std::int64_t>& work, int ranks, int first_end_min) {
+  const int strips = static_cast<int>(work.size());
+  Decomposition d(strips);
+  if (ranks <= 1) return d;
+  first_end_min = std::max(first_end_min, kMinStrips);
+  if (strips < first_end_min + (ranks - 1) * kMinStrips)
+    throw SceneError("the grid has " + std::to_string(strips) + " strips of " + std::to_string(4) +
+                     " cell rows, too few for " + std::to_string(ranks) + " ranks (each needs " +
+                     std::to_string(kMinStrips) + "); use fewer ranks or finer cells");
+  std::vector<std::int64_t> prefix(static_cast<std::size_t>(strips) + 1, 0);
+  for (int s = 0; s < strips; ++s) prefix[static_cast<std::size_t>(s) + 1] = prefix[static_cast<std::size_t>(s)] + work[static_cast<std::size_t>(s)];
+  const std::int64_t total = prefix.back();
+  d.bounds_.assign(static_cast<std::size_t>(ranks) + 1, 0);
+  d.bounds_.back() = strips;
+  for (int r = 0; r + 1 < ranks; ++r) {
+    const int start = d.bounds_[static_cast<std::size_t>(r)];
+    const int lowest = std::max(start + kMinStrips, r == 0 ? first_end_min : 0);
+    const int highest = strips - (ranks - 1 - r) * kMinStrips;
+    // The first strip boundary at which ranks 0..r hold (r + 1) / ranks of the work (integers: the
+    // same on every rank).
+    int end = lowest;
+    while (end < highest && prefix[static_cast<std::size_t>(end)] * ranks < (r + 1) * total) ++end;
+    d.bounds_[static_cast<std::size_t>(r) + 1] = end;
+  }
+  return d;
+}
+
+int Decomposition::owner(int strip) const {
+  const auto it = std::upper_bound(bounds_.begin() + 1, bounds_.end() - 1, strip);
+  return static_cast<int>(it - (bounds_.begin() + 1));
+}
+
+double Decomposition::imbalance(const std::vector<std::int64_t>& work) const {
+  std::int64_t total = 0, largest = 0;
+  for (int r = 0; r < ranks(); ++r) {
+    std::int64_t w = 0;
+    for (int s = first_strip(r); s < end_strip(r); ++s) w += work[static_cast<std::size_t>(s)];
+    total += w;
+    largest = std::max(largest, w);
+  }
+  return total > 0 ? static_cast<double>(largest) * ranks() / static_cast<double>(total) : 1.0;
+}
+
+template <int D>
+std::vector<char> pack_points(const Particles<D>& p, const std::vector<std::size_t>& which) {
+  std::vector<char> out(sizeof(std::uint64_t));
+  const std::uint64_t count = which.size();
+  std::memcpy(out.data(), &count, sizeof count);
+  out.reserve(sizeof count + which.size() * p.bytes_per_point());
+  p.for_each_member([&](auto field) {
+    const auto& values = p.*field;
+    using T = typename std::decay_t<decltype(values)>::value_type;
+    const std::size_t at = out.size();
+    out.resize(at + which.size() * sizeof(T));
+    char* to = out.data() + at;
+    for (std::size_t q : which) {
+      std::memcpy(to, &values[q], sizeof(T));
+      to += sizeof(T);
+    }
+  });
+  return out;
+}
+
+template <int D>
+void unpack_points(Particles<D>& p, const std::vector<char>& bytes) {
+  if (bytes.size() < sizeof(std::uint64_t)) return;
+  std::uint64_t count = 0;
+  std::memcpy(&count, bytes.data(), sizeof count);
+  std::size_t at = sizeof count;
+  p.for_each_member([&](auto field) {
+    auto& values = p.*field;
+    using T = typename std::decay_t<decltype(values)>::value_type;
+    const std::size_t old = values.size();
+    values.resize(old + count);
+    std::memcpy(static_cast<void*>(values.data() + old), bytes.data() + at, count * sizeof(T));
+    at += count * sizeof(T);
+  });
+}
+
+template <int D>
+void keep_points(Particles<D>& p, const std::vector<char>& keep) {
+  p.for_each_member([&](auto field) {
+    auto& values = p.*field;
+    std::size_t to = 0;
+    for (std::size_t q = 0; q < values.size(); ++q)
+      if (keep[q]) values[to++] = values[q];
+    values.resize(to);
+  });
+}
+
+template <int D>
+void sort_by_id(Particles<D>& p) {
+  if (std::is_sorted(p.id.begin(), p.id.end())) return;
+  std::vector<std::size_t> order(p.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+  p.for_each_member([&](auto field) {
+    auto& values = p.*field;
+    std::decay_t<decltype(values)> sorted;
+    sorted.reserve(values.size());
+    for (std::size_t q : order) sorted.push_back(values[q]);
+    values.swap(sorted);
+  });
+}
+
+template <int D>
+std::size_t index_of_id(const Particles<D>& p, std::uint32_t id) {
+  const auto it = std::lower_bound(p.id.begin(), p.id.end(), id);
+  return it != p.id.end() && *it == id ? static_cast<std::size_t>(it - p.id.begin()) : p.size();
+}
+
+template <int D>
+std::size_t first_at_or_after(const Particles<D>& p, std::size_t id) {
+  if (id > 0xffffffffu) return p.size();
+  return static_cast<std::size_t>(std::lower_bound(p.id.begin(), p.id.end(), static_cast<std::uint32_t>(id)) -
+                                  p.id.begin());
+}
+
+template <int D>
+Particles<D> gather_points(const Particles<D>& mine, const Comm& comm) {
+  if (!comm.parallel()) return mine;
+  std::vector<std::size_t> all(mine.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  const std::vector<std::vector<char>> parts = comm.gather(pack_points(mine, all));
+  Particles<D> whole;
+  whole.enable_fields_of(mine);
+  for (const std::vector<char>& part : parts) unpack_points(whole, part);
+  sort_by_id(whole);
+  return whole;
+}
+
+#define MPMSHOCK_INSTANTIATE(D)                                                                     \
+  template std::vector<char> pack_points<D>(const Particles<D>&, const std::vector<std::size_t>&); \
+  template void unpack_points<D>(Particles<D>&, const std::vector<char>&);                       \
+  template void keep_points<D>(Particles<D>&, const std::vector<char>&);                         \
+  template void sort_by_id<D>(Particles<D>&);                                                    \
+  template std::size_t index_of_id<D>(const Particles<D>&, std::uint32_t);                       \
+  template std::size_t first_at_or_after<D>(const Particles<D>&, std::size_t);                   \
+  template Particles<D> gather_points<D>(const Particles<D>&, const Comm&);
+MPMSHOCK_INSTANTIATE(2)
+MPMSHOCK_INSTANTIATE(3)
+#undef MPMSHOCK_INSTANTIATE
+
+}  // namespace mpmshock
