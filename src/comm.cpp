@@ -38,6 +38,11 @@ Comm& Comm::world() {
   return comm;
 }
 
+const Comm& Comm::single() {
+  static const Comm comm;
+  return comm;
+}
+
 bool Comm::built_with_mpi() {
 #ifdef MPMSHOCK_HAVE_MPI
   return true;

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "mpmshock/comm.hpp"
+
 #include "mpmshock/hdf5_io.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/scene.hpp"
@@ -40,10 +42,21 @@ summary.json into its output_dir.
   --help           this text
   --version        the version
 
+On several MPI ranks (mpirun -np N mpmshock SCENE ...) each rank simulates a slab of the column
+and the outputs are the same, bit for bit, as those of one process; rank 0 writes them.
+
 Exit codes: 0 done, 2 bad command line or scene, 3 the run hit a non-physical state (a final
 snapshot is written), 4 output could not be written, 130 / 143 stopped by SIGINT / SIGTERM
 after the current step (a final snapshot to restart from and the summary are written).
 )";
+
+// Rank 0 speaks for all the ranks (each parses the same command line and scene).
+bool speaks() { return mpmshock::Comm::world().root(); }
+
+[[noreturn]] void finish(int code) {
+  mpmshock::Comm::finalize();
+  std::exit(code);
+}
 
 struct Args {
   std::string scene;
@@ -54,8 +67,8 @@ struct Args {
 };
 
 [[noreturn]] void usage_error(const std::string& message) {
-  std::fprintf(stderr, "mpmshock: %s\n(see mpmshock --help)\n", message.c_str());
-  std::exit(mpmshock::kExitBadInput);
+  if (speaks()) std::fprintf(stderr, "mpmshock: %s\n(see mpmshock --help)\n", message.c_str());
+  finish(mpmshock::kExitBadInput);
 }
 
 Args parse_args(int argc, char** argv) {
@@ -67,14 +80,16 @@ Args parse_args(int argc, char** argv) {
       return std::string(argv[++i]);
     };
     if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
-      std::exit(0);
+      if (speaks()) std::fputs(kUsage, stdout);
+      finish(0);
     } else if (arg == "--version") {
-      std::printf("mpmshock %s\n", mpmshock::kVersion);
-      std::exit(0);
+      if (speaks())
+        std::printf("mpmshock %s%s\n", mpmshock::kVersion,
+                    mpmshock::Comm::built_with_mpi() ? " (with MPI)" : "");
+      finish(0);
     } else if (arg == "--keys") {
-      std::fputs(mpmshock::key_reference_markdown().c_str(), stdout);
-      std::exit(0);
+      if (speaks()) std::fputs(mpmshock::key_reference_markdown().c_str(), stdout);
+      finish(0);
     } else if (arg == "--set") {
       a.overrides.push_back(value("--set"));
     } else if (arg.rfind("--set=", 0) == 0) {
@@ -109,6 +124,7 @@ Args parse_args(int argc, char** argv) {
 }
 
 void report(const mpmshock::RunResult& result) {
+  if (!speaks()) return;
   if (result.exit_code == mpmshock::kExitNumerical)
     std::fprintf(stderr, "mpmshock: the run stopped: %s\nmpmshock: the last state is in the newest snapshot\n",
                  result.failure.c_str());
@@ -119,39 +135,59 @@ void report(const mpmshock::RunResult& result) {
 
 }  // namespace
 
+namespace {
+
+// An error every rank meets alike (the scene, the snapshot: each rank reads them) ends each rank
+// with its code; one that a rank may meet alone (memory, the disk) stops every rank at once.
+[[noreturn]] void fail(const char* message, int code, bool every_rank_alike) {
+  const mpmshock::Comm& comm = mpmshock::Comm::world();
+  if (speaks() || (comm.parallel() && !every_rank_alike))
+    std::fprintf(stderr, "mpmshock: error: %s%s\n", message,
+                 comm.parallel() && !every_rank_alike ? (" (rank " + std::to_string(comm.rank()) + ")").c_str() : "");
+  if (comm.parallel() && !every_rank_alike) comm.abort(code);
+  finish(code);
+}
+
+int run(const Args& args) {
+  if (!args.restart.empty() && args.check) {
+    const std::string text = mpmshock::check_restart(args.restart, args.overrides);
+    if (speaks()) std::fputs(text.c_str(), stdout);
+    return mpmshock::kExitOk;
+  }
+  if (!args.restart.empty()) {
+    const mpmshock::RunOptions options{args.quiet, args.force, args.fixed_threads};
+    const mpmshock::RunResult result = mpmshock::restart_run(args.restart, args.overrides, options);
+    report(result);
+    return result.exit_code;
+  }
+  const mpmshock::Scene scene = mpmshock::load_scene(args.scene, args.overrides);
+  if (args.check) {
+    const std::string text = mpmshock::check_report(scene);
+    if (speaks()) std::fputs(text.c_str(), stdout);
+    return mpmshock::kExitOk;
+  }
+  const mpmshock::RunResult result = mpmshock::run_scene(scene, {args.quiet, args.force, args.fixed_threads});
+  report(result);
+  return result.exit_code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  mpmshock::Comm::init(&argc, &argv);
   mpmshock::h5::prepare_library();
   const Args args = parse_args(argc, argv);
   if (args.threads > 0) omp_set_num_threads(args.threads);
   mpmshock::install_stop_handlers();
   try {
-    if (!args.restart.empty() && args.check) {
-      std::fputs(mpmshock::check_restart(args.restart, args.overrides).c_str(), stdout);
-      return mpmshock::kExitOk;
-    }
-    if (!args.restart.empty()) {
-      const mpmshock::RunOptions options{args.quiet, args.force, args.fixed_threads};
-      const mpmshock::RunResult result = mpmshock::restart_run(args.restart, args.overrides, options);
-      report(result);
-      return result.exit_code;
-    }
-    const mpmshock::Scene scene = mpmshock::load_scene(args.scene, args.overrides);
-    if (args.check) {
-      std::fputs(mpmshock::check_report(scene).c_str(), stdout);
-      return mpmshock::kExitOk;
-    }
-    const mpmshock::RunResult result = mpmshock::run_scene(scene, {args.quiet, args.force, args.fixed_threads});
-    report(result);
-    return result.exit_code;
+    finish(run(args));
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "mpmshock: error: out of memory: the run needs more memory than this machine can give it; "
-                         "use a coarser cell_size, smaller bodies or a smaller grid_margin (--check estimates it)\n");
-    return mpmshock::kExitBadInput;
+    fail("out of memory: the run needs more memory than this machine can give it; use a coarser cell_size, "
+         "smaller bodies or a smaller grid_margin (--check estimates it)",
+         mpmshock::kExitBadInput, false);
   } catch (const mpmshock::SceneError& e) {
-    std::fprintf(stderr, "mpmshock: error: %s\n", e.what());
-    return mpmshock::kExitBadInput;
+    fail(e.what(), mpmshock::kExitBadInput, true);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "mpmshock: error: %s\n", e.what());
-    return mpmshock::kExitIo;
+    fail(e.what(), mpmshock::kExitIo, false);
   }
 }

@@ -105,6 +105,20 @@ Particles<D> MirrorImage<D>::whole(const Particles<D>& half) const {
 }
 
 template <int D>
+Particles<D> MirrorImage<D>::with_images(const Particles<D>& half) const {
+  Particles<D> out;
+  out.enable_fields_of(half);
+  out.reserve(2 * half.size());
+  for (std::size_t q = 0; q < half.size(); ++q) out.append_copy(half, q);
+  for (std::size_t q = 0; q < half.size(); ++q) {  // every target point has its image: the mirror is a bijection
+    out.append_copy(half, q);
+    reflect_point(out, out.size() - 1);
+    out.body.back() = Body::flyer;
+  }
+  return out;
+}
+
+template <int D>
 Totals MirrorImage<D>::whole(const Totals& half) const {
   if (!on_) return half;
   Totals t;

@@ -15,12 +15,12 @@ std::string conservation_header(int dimension) {
 template <int D>
 Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append, MirrorImage<D> mirror)
     : scene_(scene), dir_(dir), mirror_(std::move(mirror)),
-      regions_(open_output(dir / "regions.csv", append ? "a" : "w")),
-      conservation_(open_output(dir / "conservation.csv", append ? "a" : "w")), xdmf_(xdmf_path()) {
+      regions_(writes_ ? open_output(dir / "regions.csv", append ? "a" : "w") : File{}),
+      conservation_(writes_ ? open_output(dir / "conservation.csv", append ? "a" : "w") : File{}), xdmf_(xdmf_path()) {
   // A band that reaches within a cell of the plane counts flyer points (their extents reach across).
   for (const RegionSpec& r : scene.regions)
     regions_need_whole_ |= mirror_.on() && r.kind == RegionSpec::Kind::band && r.a < scene.cell_size;
-  if (!append) {
+  if (writes_ && !append) {
     std::fprintf(regions_.get(), "%s\n", regions_header(scene.paper_temperature).c_str());
     std::fprintf(conservation_.get(), "%s\n", conservation_header(D).c_str());
   }
@@ -30,15 +30,17 @@ template <int D>
 void Outputs<D>::follow(Probes<D> probes, double start_time, bool append) {
   probes_ = std::move(probes);
   if (probes_.empty()) return;
-  probes_file_ = open_output(dir_ / "probes.csv", append ? "a" : "w");
-  if (!append) std::fprintf(probes_file_.get(), "%s\n", probes_header(scene_.paper_temperature).c_str());
+  if (writes_) {
+    probes_file_ = open_output(dir_ / "probes.csv", append ? "a" : "w");
+    if (!append) std::fprintf(probes_file_.get(), "%s\n", probes_header(scene_.paper_temperature).c_str());
+  }
   next_probe_ = append ? probes_.next_after(start_time) : start_time;
 }
 
 template <int D>
 void Outputs<D>::write_probe_rows(const Simulation<D>& sim) {
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
-  probes_.write_rows(probes_file_.get(), sim.time(), sim.particles(), thermal, mirror_);
+  probes_.write_rows(probes_file_.get(), sim.time(), sim.particles(), thermal, mirror_, comm_);
   next_probe_ = probes_.next_after(sim.time());
 }
 
@@ -47,11 +49,13 @@ void Outputs<D>::sample(const Simulation<D>& sim, double dt) {
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   // Regions of the target alone see the same points either way; a band may reach into the flyer.
   std::optional<Particles<D>> whole;
-  if (regions_need_whole_) whole = mirror_.whole(sim.particles());
+  if (regions_need_whole_) whole = mirror_.with_images(sim.particles());
   const Particles<D>& points = whole ? *whole : sim.particles();
-  write_region_rows(regions_.get(), sim.time(), sample_regions(points, scene_.regions, thermal,
-                                                                   sim.grid().geo.cross_section()));
+  const std::vector<RegionStats> stats =
+      sample_regions(points, scene_.regions, thermal, sim.whole_grid().cross_section(), comm_);
   const Totals t = totals(sim);
+  if (!writes_) return;
+  write_region_rows(regions_.get(), sim.time(), stats);
   std::fprintf(conservation_.get(), "%.10g,%lld,%.6g,%.12g,", sim.time(), static_cast<long long>(sim.steps()), dt,
                t.mass);
   for (int d = 0; d < D; ++d) std::fprintf(conservation_.get(), "%.12g,", t.momentum[d]);
@@ -68,15 +72,27 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
   SnapshotOptions<D> options;
   options.compression = static_cast<int>(scene_.snapshot_compression);
   options.melt = melt_curve_of(scene_);
+  std::optional<Grid<D>> gathered;  // MPI: every rank's rows of the grid
   if (scene_.snapshot_grid) {
-    options.grid = &sim.grid();
-    options.grid_rows = sim.active_rows();
+    if (comm_.parallel()) {
+      gathered.emplace(sim.gathered_grid(options.grid_rows));
+      options.grid = &*gathered;
+    } else {
+      options.grid = &sim.grid();
+      options.grid_rows = sim.active_rows();
+    }
   }
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   options.mirror = &mirror_;
-  write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);
-  const GridGeometry<D>& g = sim.grid().geo;
-  const std::size_t points = sim.particles().size() + (mirror_.on() ? mirror_.flyer_points() : 0);
+  if (comm_.parallel()) {
+    const Particles<D> all = sim.all_particles();  // at rank 0
+    if (writes_) write_snapshot((dir_ / name).string(), all, thermal, run, options);
+  } else {
+    write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);
+  }
+  if (!writes_) return;
+  const GridGeometry<D>& g = sim.whole_grid();
+  const std::size_t points = sim.total_points() + (mirror_.on() ? mirror_.flyer_points() : 0);
   xdmf_.add({name, sim.time(), points, scene_.snapshot_grid, g.nx, g.ny, g.y_min, g.h, D, g.nz});
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "mpmshock/decomposition.hpp"
 #include "mpmshock/exact_sum.hpp"
 
 namespace mpmshock {
@@ -61,14 +62,17 @@ double Probes<D>::next_after(double t) const {
 
 template <int D>
 void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal,
-                           const MirrorImage<D>& mirror) const {
+                           const MirrorImage<D>& mirror, const Comm& comm) const {
   enum { kX, kY, kVx, kVy, kP, kRho, kT, kPaperT, kSums };
   const bool paper = thermal && thermal->reports_paper_temperature();
   std::vector<ExactSum> sums(probes_.size() * kSums);
   for (std::size_t k = 0; k < probes_.size(); ++k) {
     ExactSum* s = &sums[k * kSums];
     for (std::uint32_t id : probes_[k].ids) {
-      const auto [q, mirrored] = mirror.source_of(id);  // storage order is id order: points are never reordered
+      const auto [simulated, mirrored] = mirror.source_of(id);
+      // One rank holds every point at its id's index; a rank of several looks its own ones up.
+      const std::size_t q = comm.parallel() ? index_of_id(p, simulated) : simulated;
+      if (q >= p.size()) continue;
       const double y_sign = mirrored ? -1.0 : 1.0;
       s[kX].add(p.x[q][0]);
       s[kY].add(y_sign * p.x[q][1]);
@@ -80,6 +84,8 @@ void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, c
       if (paper) s[kPaperT].add(thermal->paper_of_point(p, q));
     }
   }
+  comm.sum(sums.data(), static_cast<int>(sums.size()));
+  if (out == nullptr) return;
   for (std::size_t k = 0; k < probes_.size(); ++k) {
     const Probe& probe = probes_[k];
     const double n = static_cast<double>(probe.ids.size());

@@ -195,6 +195,8 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   std::vector<XdmfSnapshot> earlier;
   bool append = false;
   DirectoryLock lock;
+  const Comm& comm = Comm::world();
+  on_root(comm, [&] {  // the directory is rank 0's
   if (new_dir) {
     lock = prepare_output_dir(scene, options.force);
   } else {
@@ -234,9 +236,10 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
       }
     }
   }
-  r.run.scene_text = resolved_scene(scene);
-  write_text(dir / "scene.txt", r.run.scene_text);
+  write_text(dir / "scene.txt", resolved_scene(scene));
   if (!fs::exists(dir / "voids.csv")) write_voids(dir / "voids.csv", r.run.flyer, r.run.target, D);
+  });
+  r.run.scene_text = resolved_scene(scene);
 
   // Probes and the mirror image come from the initial state, as the run made them (and only they
   // are kept of it). A snapshot holds the whole impact; with symmetry = on the target's points go on.

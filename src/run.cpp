@@ -17,19 +17,25 @@ template <int D>
 RunResult run_new(const Scene& scene, const RunOptions& options) {
   check_fits<D>(scene);
   InitialState<D> initial = build_initial_state<D>(scene);  // SceneError on voids that cannot fit
-  for (const std::string& w : scene_warnings(scene)) std::fprintf(stderr, "mpmshock: warning: %s\n", w.c_str());
+  const Comm& comm = Comm::world();
+  if (comm.root())
+    for (const std::string& w : scene_warnings(scene)) std::fprintf(stderr, "mpmshock: warning: %s\n", w.c_str());
   RunState run;
   run.scene_text = resolved_scene(scene);
   run.target = initial.target;
   run.flyer = initial.flyer;
-  run.initial = initial.mirror.whole(compute_totals(initial.particles));  // summed as every later total is
+  // Summed as every later total is; every rank holds all the initial points.
+  run.initial = initial.mirror.whole(compute_totals(initial.particles, Comm::single()));
   Probes<D> probes = probes_of(scene, initial);
   Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
 
   const fs::path dir(scene.output_dir);
-  const DirectoryLock lock = prepare_output_dir(scene, options.force);
-  write_text(dir / "scene.txt", run.scene_text);
-  write_voids(dir / "voids.csv", run.flyer, run.target, D);
+  DirectoryLock lock;  // rank 0 writes the directory
+  on_root(comm, [&] {
+    lock = prepare_output_dir(scene, options.force);
+    write_text(dir / "scene.txt", run.scene_text);
+    write_voids(dir / "voids.csv", run.flyer, run.target, D);
+  });
   Outputs<D> out(scene, dir, false, std::move(initial.mirror));
   out.follow(std::move(probes), sim.time(), false);
   out.probe(sim);
@@ -50,9 +56,12 @@ std::string describe_result(const RunResult& r) {
   std::ostringstream out;
   out << "steps: " << r.steps << " to t = " << r.end_time * 1e9 << " ns";
   if (r.start_time > 0) out << " (restarted at " << r.start_time * 1e9 << " ns)";
-  out << "\nwall time: " << r.wall_seconds << " s on " << r.threads << (r.threads == 1 ? " thread" : " threads");
+  out << "\nwall time: " << r.wall_seconds << " s on ";
+  if (r.ranks > 1) out << r.ranks << " MPI ranks x ";
+  out << r.threads << (r.threads == 1 ? " thread" : " threads");
   if (r.steps_with_fewer_threads > 0)
     out << " (fewer for " << r.steps_with_fewer_threads << " steps, where that measured faster: a busy machine)";
+  if (r.ranks > 1) out << "; the largest rank's work is " << r.imbalance << " x the mean";
   out << "\n";
   out << "material points: " << r.points;
   if (r.symmetry) out << " simulated (the target; symmetry = on: the flyer is its mirror image, " << 2 * r.points

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <sstream>
@@ -277,6 +278,38 @@ StepStatus Simulation<D>::agree_on(StressUpdateResult& update, std::size_t left)
   if (agreed[1] != none) return {StepStatus::Code::bad_state, static_cast<std::size_t>(-agreed[1])};
   if (agreed[2] != none) return {StepStatus::Code::left_grid, static_cast<std::size_t>(-agreed[2])};
   return {};
+}
+
+template <int D>
+Grid<D> Simulation<D>::gathered_grid(RowRange& rows) const {
+  const RowRange mine = bins_.rows();
+  std::vector<char> out(2 * sizeof(int));
+  std::memcpy(out.data(), &mine.begin, sizeof(int));
+  std::memcpy(out.data() + sizeof(int), &mine.end, sizeof(int));
+  if (mine.end > mine.begin) {
+    const std::size_t b = grid_.geo.row_start(mine.begin), e = grid_.geo.row_start(mine.end);
+    const std::size_t at = out.size();
+    out.resize(at + (e - b) * (sizeof(double) + sizeof(Vec<D>)));
+    std::memcpy(out.data() + at, grid_.m.data() + b, (e - b) * sizeof(double));
+    std::memcpy(out.data() + at + (e - b) * sizeof(double), grid_.v.data() + b, (e - b) * sizeof(Vec<D>));
+  }
+  const std::vector<std::vector<char>> parts = comm_->gather(out);
+  if (!comm_->root()) return Grid<D>{};
+  Grid<D> whole(whole_geo_);  // rows no rank used are empty: m = 0, v = 0, as one process leaves them
+  rows = {whole_geo_.ny, 0};
+  for (const std::vector<char>& part : parts) {
+    RowRange r;
+    std::memcpy(&r.begin, part.data(), sizeof(int));
+    std::memcpy(&r.end, part.data() + sizeof(int), sizeof(int));
+    if (r.end <= r.begin) continue;
+    rows = {std::min(rows.begin, r.begin), std::max(rows.end, r.end)};
+    const std::size_t b = whole.geo.row_start(r.begin), e = whole.geo.row_start(r.end);
+    std::memcpy(whole.m.data() + b, part.data() + 2 * sizeof(int), (e - b) * sizeof(double));
+    std::memcpy(static_cast<void*>(whole.v.data() + b), part.data() + 2 * sizeof(int) + (e - b) * sizeof(double),
+                (e - b) * sizeof(Vec<D>));
+  }
+  if (rows.end <= rows.begin) rows = {};
+  return whole;
 }
 
 template <int D>

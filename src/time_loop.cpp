@@ -25,7 +25,7 @@ void finish_result(RunResult& result, const Simulation<D>& sim, const Totals& st
   result.end_time = sim.time();
   result.point_steps_per_second =
       result.wall_seconds > 0
-          ? static_cast<double>(sim.particles().size()) * static_cast<double>(sim.steps() - start_steps) /
+          ? static_cast<double>(sim.total_points()) * static_cast<double>(sim.steps() - start_steps) /
                 result.wall_seconds
           : 0.0;
   result.mass_error = std::abs(end.mass - start.mass) / start.mass;
@@ -45,7 +45,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   result.start_time = sim.time();
   result.porosity = porosity_of(run.target, run.flyer);
   result.voids = run.target.voids.size() + run.flyer.voids.size();
-  result.points = sim.particles().size();
+  result.points = sim.total_points();
   result.symmetry = sim.model().symmetry_plane;
   result.dimension = D;
   const std::int64_t start_steps = sim.steps();
@@ -59,7 +59,14 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   const double end_time = landing_end_time(scene);
   const int all_threads = omp_get_max_threads();
   ThreadTuner threads(options.fixed_threads ? 1 : all_threads);
-  Progress progress(!options.quiet, sim.time(), end_time);
+  const Comm& comm = sim.comm();
+  Progress progress(!options.quiet && comm.root(), sim.time(), end_time);
+  // A signal to one rank stops them all after the same step (the ranks agree on it every step).
+  int stop = 0;
+  auto stop_requested = [&] {
+    stop = comm.parallel() ? static_cast<int>(comm.max(static_cast<double>(stop_signal()))) : stop_signal();
+    return stop != 0;
+  };
   const auto wall_start = WallClock::now();
   StepStatus status;
   bool failed_at_sample = false;  // the failing check ran after the sample was written
@@ -72,7 +79,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
     sch.last_dt = dt;
     if (!status.ok()) break;
     out.probe(sim);
-    if (stop_signal() != 0) break;  // after a whole step, so the state is consistent
+    if (stop_requested()) break;  // after a whole step, so the state is consistent
     const double tol = 1e-9 * dt;
     if (sim.time() >= event_time(sch.next_sample, scene.sample_interval) - tol) {
       out.sample(sim, dt);
@@ -86,6 +93,8 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   }
   progress.finish();
   result.threads = all_threads;
+  result.ranks = comm.size();
+  if (comm.parallel()) result.imbalance = sim.imbalance();
   result.steps_with_fewer_threads = threads.steps_below_max();
   result.wall_seconds = std::chrono::duration<double>(WallClock::now() - wall_start).count();
 
@@ -94,8 +103,8 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
     result.failure = sim.describe(status);
     if (!failed_at_sample) out.sample(sim, sch.last_dt);
     take_snapshot();  // the state that went wrong, for inspection
-  } else if (stop_signal() != 0 && sim.time() < end_time * (1.0 - 1e-12)) {
-    const int sig = stop_signal();
+  } else if (stop != 0 && sim.time() < end_time * (1.0 - 1e-12)) {
+    const int sig = stop;
     result.exit_code = 128 + sig;
     const std::string name = snapshot_name(sch.snapshot_index);
     out.sample(sim, sch.last_dt);
@@ -114,7 +123,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
 
   finish_result(result, sim, run.initial, out.totals(sim), start_steps);
   omp_set_num_threads(all_threads);
-  write_summary_json(dir / "summary.json", result);
+  if (comm.root()) write_summary_json(dir / "summary.json", result);
   return result;
 }
 
@@ -138,13 +147,15 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
                "  \"end_time\": %s,\n  \"wall_seconds\": %s,\n  \"material_points\": %zu,\n"
                "  \"point_steps_per_second\": %s,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n"
                "  \"mass_error\": %s,\n  \"momentum_error\": %s,\n  \"energy_error\": %s,\n"
-               "  \"porosity\": %s,\n  \"voids\": %zu,\n  \"symmetry\": %s,\n  \"dimension\": %d\n}\n",
+               "  \"porosity\": %s,\n  \"voids\": %zu,\n  \"symmetry\": %s,\n  \"dimension\": %d,\n  \"ranks\": %d,\n"
+               "  \"imbalance\": %s\n}\n",
                r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps),
                json_number(r.start_time).c_str(), json_number(r.end_time).c_str(), json_number(r.wall_seconds).c_str(),
                r.points, json_number(r.point_steps_per_second).c_str(), r.threads,
                static_cast<long long>(r.steps_with_fewer_threads), json_number(r.mass_error).c_str(),
                json_number(r.momentum_error).c_str(), json_number(r.energy_error).c_str(),
-               json_number(r.porosity).c_str(), r.voids, r.symmetry ? "true" : "false", r.dimension);
+               json_number(r.porosity).c_str(), r.voids, r.symmetry ? "true" : "false", r.dimension, r.ranks,
+               json_number(r.imbalance).c_str());
   flush_or_throw(f.get(), path.string());
   f.reset();
   fs::rename(tmp, path);

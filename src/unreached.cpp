@@ -13,10 +13,9 @@ namespace mpmshock {
 
 template <int D>
 UnreachedMaterial<D>::UnreachedMaterial(const Scene& scene, const Particles<D>& pts, const Comm& comm)
-    : on_(true), flyer_velocity_(scene.velocity), target_velocity_(-scene.velocity),
+    : comm_(&comm), on_(true), flyer_velocity_(scene.velocity), target_velocity_(-scene.velocity),
       margin_(kMarginCells * scene.cell_size), speed_tolerance_(1e-9 * std::max(scene.velocity, 1.0)),
-      energy_tolerance_(1e-12 * 0.5 * std::max(scene.velocity, 1.0) * std::max(scene.velocity, 1.0)),
-      comm_(&comm) {
+      energy_tolerance_(1e-12 * 0.5 * std::max(scene.velocity, 1.0) * std::max(scene.velocity, 1.0)) {
   // Every rank's points; the flyer's are the ids below the first target point's.
   std::int64_t counts[2] = {static_cast<std::int64_t>(pts.size()),
                             static_cast<std::int64_t>(std::count(pts.body.begin(), pts.body.end(), Body::flyer))};

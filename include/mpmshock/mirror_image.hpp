@@ -35,6 +35,9 @@ class MirrorImage {
   Particles<D> half(const Particles<D>& whole) const;
   // The whole set from the simulated points: the mirrored flyer, then the target, in id order.
   Particles<D> whole(const Particles<D>& half) const;
+  // Some of the simulated points (an MPI rank's) and the flyer points that mirror them, for sums
+  // over the whole (region statistics; the ids of the images are not kept).
+  Particles<D> with_images(const Particles<D>& half) const;
   // The totals of the whole from those of the simulated points.
   Totals whole(const Totals& half) const;
   // A sum over the whole (of a quantity the mirror image does not change sign) from its sum over

@@ -1,5 +1,7 @@
 // The output files of a run directory that grow as the run goes: regions.csv and
-// conservation.csv (one row per sample), the snapshots and their XDMF index.
+// conservation.csv (one row per sample), the snapshots and their XDMF index. On MPI ranks every
+// rank computes its share of each row (sums across ranks: comm.hpp) and rank 0 writes the files; a
+// snapshot gathers every rank's points at rank 0, which writes the one file.
 #pragma once
 
 #include <string>
@@ -34,17 +36,21 @@ class Outputs {
   }
 
   // Snapshots already in the directory that the XDMF index must keep listing (restart).
-  void keep_listing(std::vector<XdmfSnapshot> earlier) { xdmf_ = XdmfIndex(xdmf_path(), std::move(earlier)); }
+  void keep_listing(std::vector<XdmfSnapshot> earlier) {
+    if (writes_) xdmf_ = XdmfIndex(xdmf_path(), std::move(earlier));
+  }
 
   // One row per region in regions.csv and one in conservation.csv, at the simulation's time.
   void sample(const Simulation<D>& sim, double dt);
   // snapshot_NNNNN.h5 (NNNNN = run.schedule.snapshot_index) and the XDMF index.
   void snapshot(const Simulation<D>& sim, const RunState& run);
   // The conserved totals of the whole impact.
-  Totals totals(const Simulation<D>& sim) const { return mirror_.whole(compute_totals(sim.particles())); }
+  Totals totals(const Simulation<D>& sim) const { return mirror_.whole(compute_totals(sim.particles(), comm_)); }
 
  private:
   const Scene& scene_;
+  const Comm& comm_ = Comm::world();
+  bool writes_ = comm_.root();  // this rank writes the files
   fs::path dir_;
   MirrorImage<D> mirror_;
   bool regions_need_whole_ = false;  // a band region counts flyer points too

@@ -34,8 +34,10 @@ class Probes {
   double next_after(double t) const;
   // One row per probe at the points' current state; with a mirror image on, a flyer point is read
   // as the mirror of the target point it is the image of.
+  // On MPI ranks each rank passes its own points (in id order) and rank 0 the file; the means are
+  // over every rank's.
   void write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal,
-                  const MirrorImage<D>& mirror) const;
+                  const MirrorImage<D>& mirror, const Comm& comm = Comm::world()) const;
 
  private:
   struct Probe {

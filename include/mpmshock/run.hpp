@@ -36,7 +36,9 @@ struct RunResult {
   bool symmetry = false;    // symmetry = on: the flyer is the target's mirror image
   int dimension = 2;
   double point_steps_per_second = 0.0;  // of the simulated points
-  int threads = 1;                           // the most threads the run used
+  int threads = 1;                           // the most threads the run used (per rank)
+  int ranks = 1;                             // MPI ranks (decomposition.hpp)
+  double imbalance = 1.0;                    // MPI: the largest rank's work over the mean, at the end
   std::int64_t steps_with_fewer_threads = 0;  // steps the thread tuner ran with fewer (thread_tuner.hpp)
   double mass_error = 0.0, momentum_error = 0.0, energy_error = 0.0;  // relative, since t = 0
   double porosity = 1.0;                                             // from the material points

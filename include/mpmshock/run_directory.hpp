@@ -7,8 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
+#include "mpmshock/comm.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/setup.hpp"
 
@@ -61,6 +63,27 @@ void write_text(const fs::path& path, const std::string& text);
 void write_text_atomically(const fs::path& path, const std::string& text);
 // voids.csv: body, x, y, radius per void (body, x, y, z, radius per sphere in 3D).
 void write_voids(const fs::path& path, const BodySummary& flyer, const BodySummary& target, int dimension);
+
+// Runs f on rank 0 alone (the run directory is rank 0's to write); an error it throws there is thrown
+// on every rank, SceneError as SceneError and any other as std::runtime_error, so that no rank waits
+// for one that gave up.
+template <class F>
+void on_root(const Comm& comm, F&& f) {
+  std::string failure;  // "S" or "R", then the message
+  if (comm.root()) {
+    try {
+      f();
+    } catch (const SceneError& e) {
+      failure = std::string("S") + e.what();
+    } catch (const std::exception& e) {
+      failure = std::string("R") + e.what();
+    }
+  }
+  comm.broadcast(failure);
+  if (failure.empty()) return;
+  if (failure[0] == 'S') throw SceneError(failure.substr(1));
+  throw std::runtime_error(failure.substr(1));
+}
 
 // The rows of a CSV (the header is not a row) whose time, the first column, is after t.
 std::size_t count_rows_after(const fs::path& path, double t);

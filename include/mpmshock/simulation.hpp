@@ -100,6 +100,9 @@ class Simulation {
   const Decomposition& decomposition() const { return slabs_; }
   // Node rows the last step used here; the grid's fields outside them are stale.
   RowRange active_rows() const { return bins_.rows(); }
+  // MPI: the nodal mass and velocity of every rank's active rows in one grid at rank 0, and in
+  // `rows` the rows they span (for a snapshot's /grid).
+  Grid<D> gathered_grid(RowRange& rows) const;
   // This rank's points the steps compute; the others nothing has reached yet (unreached.hpp).
   PointRange computed_points() const { return unreached_.computed(points_); }
 
