@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# mpirun -np N mpmshock gives the same bits as mpmshock: every output file of tiny impacts (2D and 3D,
+# every effect) compared between 1, 2 and 3 ranks on this machine's 2 cores (--oversubscribe); a
+# restart on another number of ranks; a failure on one rank (its point named, all ranks stopped, the
+# last state saved); SIGTERM to one rank; a bad scene reported once. No verdict depends on timing.
+# usage: mpi_test.sh MPMSHOCK_BINARY DATA_DIR
+set -u
+bin=$1
+data=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+# Tests run as root in CI; Open MPI refuses that unless told, and must not bind two ranks to one core.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export OMPI_MCA_hwloc_base_binding_policy=none OMP_NUM_THREADS=1 OMP_WAIT_POLICY=PASSIVE
+mpirun=(mpirun --oversubscribe -q)
+failures=0
+fail() { echo "FAILED: $*" >&2; failures=$((failures + 1)); }
+
+# run NP DIR ARGS...: the simulator on NP ranks (1: without mpirun), its outputs into DIR.
+run() {
+  local np=$1 dir=$2
+  shift 2
+  rm -rf "$dir"
+  if [ "$np" -eq 1 ]; then "$bin" "$@" --quiet --force >"$dir.out" 2>"$dir.err"
+  else "${mpirun[@]}" -np "$np" "$bin" "$@" --quiet --force >"$dir.out" 2>"$dir.err"; fi
+}
+
+# same DIR_A DIR_B WHAT: every CSV byte for byte, every snapshot dataset and attribute by h5diff
+# (the run directories' own names aside: both runs go to the same output_dir, one moved away).
+same() {
+  local a=$1 b=$2 what=$3 f
+  for f in regions.csv conservation.csv probes.csv voids.csv scene.txt snapshots.xdmf; do
+    [ -f "$a/$f" ] || continue
+    cmp -s "$a/$f" "$b/$f" || fail "$what: $f differs"
+  done
+  local n=0
+  for f in "$a"/snapshot_*.h5; do
+    n=$((n + 1))
+    h5diff -q "$f" "$b/$(basename "$f")" >/dev/null 2>&1 || fail "$what: $(basename "$f") differs"
+  done
+  [ "$n" -gt 0 ] || fail "$what: no snapshots"
+}
+
+# compare NAME SCENE ARGS...: 1 rank against 2 and 3.
+compare() {
+  local name=$1 scene=$2
+  shift 2
+  run 1 out "$scene" --set output_dir=out "$@" || fail "$name: one rank exited $?: $(cat out.err)"
+  mv out "$name-1"
+  for np in 2 3; do
+    run "$np" out "$scene" --set output_dir=out "$@" || fail "$name: $np ranks exited $?: $(tail -3 out.err)"
+    grep -q "\"ranks\": $np" out/summary.json || fail "$name: summary.json does not say $np ranks"
+    mv out "$name-$np"
+    same "$name-1" "$name-$np" "$name on $np ranks"
+  done
+  echo "$name: 1, 2 and 3 ranks identical"
+}
+
+probes=(--set probe.top=surface --set "probe.inside=point 101 um 151 um" --set "probe.flyer=point 101 um -151 um")
+compare porous "$data/tiny_porous.scene" "${probes[@]}" --set "region.across=band -100 um 100 um" \
+  --set region.T100="top 100 um" --set snapshot_grid=on
+compare effects "$data/tiny_porous.scene" --set shape_function=gimp --set heat_conduction=on --set spall=on \
+  --set update_scheme=usl --set hardening_beta=0.5 --set taylor_quinney=0.9 --set flip_fraction=0.98
+compare whole "$data/tiny_porous.scene" --set shape_function=bilinear --set flyer_mirror=off --set skip_unreached=off \
+  --set paper_temperature=on "${probes[@]}"
+compare porous3d "$data/tiny_porous_3d.scene" --set probe.top=surface
+
+# Restart on another number of ranks: from the middle snapshot of the 1-rank run, on 3 ranks, and
+# from the middle of a 2-rank run on 1 rank: the same files as the run straight through.
+cp -r porous-1 restart3
+"${mpirun[@]}" -np 3 "$bin" --restart restart3/snapshot_00001.h5 --quiet --force >/dev/null 2>restart3.err ||
+  fail "restart on 3 ranks exited $?: $(tail -3 restart3.err)"
+same porous-1 restart3 "1-rank run restarted on 3 ranks"
+cp -r porous-2 restart1
+"$bin" --restart restart1/snapshot_00001.h5 --quiet --force >/dev/null 2>restart1.err ||
+  fail "restart on 1 rank exited $?: $(cat restart1.err)"
+same porous-1 restart1 "2-rank run restarted on 1 rank"
+
+# A failure on one rank: the point that leaves the grid first is at the top, on the last rank. Every
+# rank stops at the same step with exit 3, the message names the point as one process does, and the
+# last state is saved and equal.
+printf 'porosity = 1\nwidth = 40 um\ntarget_height = 300 um\nflyer_height = 300 um\ncell_size = 10 um\n' > thin.scene
+printf 'grid_margin = 20 um\nend_time = 200 ns\nsnapshot_interval = 0\noutput_dir = thin\n' >> thin.scene
+run 1 thin thin.scene
+rc=$?
+[ "$rc" -eq 3 ] || fail "thin: one rank exited $rc, expected 3"
+mv thin thin-1
+mv thin.err thin-1.err
+run 3 thin thin.scene
+rc=$?
+[ "$rc" -eq 3 ] || fail "thin: 3 ranks exited $rc, expected 3"
+message=$(grep -o "material point [0-9]* left the grid" thin.err)
+[ -n "$message" ] && [ "$message" = "$(grep -o "material point [0-9]* left the grid" thin-1.err)" ] ||
+  fail "thin: 3 ranks do not name the point one rank names: $(head -2 thin.err)"
+grep -q '"exit_code": 3' thin/summary.json || fail "thin: summary.json lacks exit code 3"
+same thin-1 thin "a failure on one rank"
+echo "failure on one rank: exit 3, $message"
+
+# SIGTERM to one rank (the last): all ranks stop after the same step with exit 143 and a snapshot to
+# restart from, which goes on (on 2 ranks) to the end. The signal lands whenever it lands.
+"${mpirun[@]}" -np 3 "$bin" "$data/tiny_porous.scene" --quiet --set end_time=50us --set output_dir=stopped \
+  >stop.out 2>stop.err &
+launcher=$!
+while kill -0 "$launcher" 2>/dev/null; do
+  [ -f stopped/regions.csv ] && [ "$(wc -l < stopped/regions.csv)" -ge 30 ] && break
+  sleep 0.05
+done
+victim=$(pgrep -f "$bin $data/tiny_porous.scene" | grep -vx "$launcher" | sort -n | tail -1)
+kill -TERM "$victim"
+wait "$launcher"
+rc=$?
+[ "$rc" -eq 143 ] || fail "SIGTERM to one rank: exit $rc, expected 143: $(tail -3 stop.err)"
+snapshot=$(sed -n 's/.*continue with: mpmshock --restart \(.*snapshot_[0-9]*\.h5\)$/\1/p' stop.err)
+[ -n "$snapshot" ] && [ -f "$snapshot" ] || fail "SIGTERM to one rank: no stop message naming a snapshot: $(head -3 stop.err)"
+[ "$(grep -c 'stopped by SIGTERM' stop.err)" -eq 1 ] || fail "SIGTERM to one rank: the stop is not reported once"
+"${mpirun[@]}" -np 2 "$bin" --restart "$snapshot" --quiet --set end_time=0.8us >/dev/null 2>restart.err ||
+  fail "restart after SIGTERM exited $?: $(tail -3 restart.err)"
+echo "SIGTERM to one rank: all stopped at $(sed -n 's/.*at t = \([0-9.e+]*\) ns.*/\1/p' stop.err) ns, restarted"
+
+# A bad scene: exit 2 and one message, not one per rank.
+printf 'velocity = 5 mm\n' > bad.scene
+"${mpirun[@]}" -np 3 "$bin" bad.scene --check >bad.out 2>bad.err
+rc=$?
+[ "$rc" -eq 2 ] || fail "bad scene on 3 ranks: exit $rc, expected 2"
+[ "$(grep -c "bad.scene:1" bad.err)" -eq 1 ] || fail "bad scene on 3 ranks: not one message: $(cat bad.err)"
+
+if [ "$failures" -eq 0 ]; then echo "all checks passed"; else echo "$failures check(s) failed"; exit 1; fi
