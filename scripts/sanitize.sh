@@ -11,4 +11,4 @@ cmake --build build-sanitize -j "$(nproc)"
 cd build-sanitize
 # OpenMP's runtime keeps thread pools to the end; those are not leaks of ours.
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ctest --output-on-failure -j "$(nproc)" -L "unit|integration" "$@"
+ctest --output-on-failure -j "$(nproc)" -L "unit|integration|mpi" "$@"

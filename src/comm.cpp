@@ -1,5 +1,6 @@
 #include "mpmshock/comm.hpp"
 
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -16,6 +17,14 @@ namespace mpmshock {
 namespace {
 
 bool mpi_running = false;
+
+// Adds the wall time of a scope to the rank's traffic (MPI_Wtime is only there with MPI).
+struct Timed {
+  explicit Timed(Comm::Traffic& t) : traffic(t), start(std::chrono::steady_clock::now()) {}
+  ~Timed() { traffic.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
+  Comm::Traffic& traffic;
+  std::chrono::steady_clock::time_point start;
+};
 
 #ifdef MPMSHOCK_HAVE_MPI
 // Launchers announce themselves in the environment: Open MPI's mpirun, PMIx, Slurm's PMI, MPICH's
@@ -80,6 +89,9 @@ void Comm::sum(ExactSum* sums, int count) const {
   if (size_ == 1 || count == 0) return;
 #ifdef MPMSHOCK_HAVE_MPI
   std::vector<std::int64_t> words(static_cast<std::size_t>(count) * ExactSum::kWords);
+  const Timed timed(traffic_);
+  traffic_.bytes += sizeof(std::int64_t) * ExactSum::kWords * static_cast<std::uint64_t>(count);
+  ++traffic_.messages;
   for (int k = 0; k < count; ++k) {
     sums[k].carry();  // canonical digits below 2^32: thousands of ranks add without overflow
     std::memcpy(&words[static_cast<std::size_t>(k) * ExactSum::kWords], sums[k].words().data(),
@@ -95,6 +107,9 @@ void Comm::sum(ExactSum* sums, int count) const {
 void Comm::sum(std::int64_t* values, int count) const {
   if (size_ == 1 || count == 0) return;
 #ifdef MPMSHOCK_HAVE_MPI
+  const Timed timed(traffic_);
+  traffic_.bytes += sizeof(std::int64_t) * static_cast<std::uint64_t>(count);
+  ++traffic_.messages;
   check(MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD), "MPI_Allreduce");
 #endif
 }
@@ -102,6 +117,9 @@ void Comm::sum(std::int64_t* values, int count) const {
 void Comm::max(double* values, int count) const {
   if (size_ == 1 || count == 0) return;
 #ifdef MPMSHOCK_HAVE_MPI
+  const Timed timed(traffic_);
+  traffic_.bytes += sizeof(double) * static_cast<std::uint64_t>(count);
+  ++traffic_.messages;
   check(MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
 #endif
 }
@@ -111,6 +129,8 @@ std::vector<char> Comm::exchange(int to, const std::vector<char>& out, int from)
   if (size_ == 1) return in;
 #ifdef MPMSHOCK_HAVE_MPI
   constexpr int kSizeTag = 11, kDataTag = 12;
+  const Timed timed(traffic_);
+  if (to >= 0) traffic_.bytes += out.size() + sizeof(std::uint64_t), traffic_.messages += 2;
   const int dest = to >= 0 ? to : MPI_PROC_NULL, source = from >= 0 ? from : MPI_PROC_NULL;
   std::uint64_t out_size = out.size(), in_size = 0;
   check(MPI_Sendrecv(&out_size, 1, MPI_UINT64_T, dest, kSizeTag, &in_size, 1, MPI_UINT64_T, source, kSizeTag,
@@ -127,6 +147,42 @@ std::vector<char> Comm::exchange(int to, const std::vector<char>& out, int from)
   (void)to, (void)out, (void)from;
 #endif
   return in;
+}
+
+void Comm::swap(int up, const std::vector<char>& to_up, std::vector<char>& from_up, int down,
+                const std::vector<char>& to_down, std::vector<char>& from_down) const {
+  if (size_ == 1) return;
+#ifdef MPMSHOCK_HAVE_MPI
+  constexpr int kUpTag = 41, kDownTag = 42;  // by direction of travel
+  const Timed timed(traffic_);
+  MPI_Request requests[4];
+  int n = 0;
+  auto too_big = [](std::size_t bytes) {
+    if (bytes > static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error("MPI: a message of more than 2 GB");
+    return static_cast<int>(bytes);
+  };
+  if (up >= 0 && !from_up.empty())
+    check(MPI_Irecv(from_up.data(), too_big(from_up.size()), MPI_BYTE, up, kDownTag, MPI_COMM_WORLD, &requests[n++]),
+          "MPI_Irecv");
+  if (down >= 0 && !from_down.empty())
+    check(MPI_Irecv(from_down.data(), too_big(from_down.size()), MPI_BYTE, down, kUpTag, MPI_COMM_WORLD,
+                    &requests[n++]),
+          "MPI_Irecv");
+  if (up >= 0 && !to_up.empty()) {
+    check(MPI_Isend(to_up.data(), too_big(to_up.size()), MPI_BYTE, up, kUpTag, MPI_COMM_WORLD, &requests[n++]),
+          "MPI_Isend");
+    traffic_.bytes += to_up.size(), ++traffic_.messages;
+  }
+  if (down >= 0 && !to_down.empty()) {
+    check(MPI_Isend(to_down.data(), too_big(to_down.size()), MPI_BYTE, down, kDownTag, MPI_COMM_WORLD,
+                    &requests[n++]),
+          "MPI_Isend");
+    traffic_.bytes += to_down.size(), ++traffic_.messages;
+  }
+  check(MPI_Waitall(n, requests, MPI_STATUSES_IGNORE), "MPI_Waitall");
+#else
+  (void)up, (void)to_up, (void)from_up, (void)down, (void)to_down, (void)from_down;
+#endif
 }
 
 std::vector<std::vector<char>> Comm::gather(const std::vector<char>& mine) const {

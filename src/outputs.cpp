@@ -45,7 +45,8 @@ void Outputs<D>::write_probe_rows(const Simulation<D>& sim) {
 }
 
 template <int D>
-void Outputs<D>::sample(const Simulation<D>& sim, double dt) {
+void Outputs<D>::sample(Simulation<D>& sim, double dt) {
+  sim.settle();
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   // Regions of the target alone see the same points either way; a band may reach into the flyer.
   std::optional<Particles<D>> whole;

@@ -1,6 +1,7 @@
 #include "mpmshock/simulation.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -8,6 +9,7 @@
 #include <sstream>
 
 #include "mpmshock/shape.hpp"
+#include "mpmshock/signals.hpp"
 #include "mpmshock/symmetry_plane.hpp"
 #include "mpmshock/transfer.hpp"
 #include "mpmshock/zero_kelvin_check.hpp"
@@ -155,28 +157,57 @@ void Simulation<D>::keep_own_points(Particles<D>& all) {
 }
 
 template <int D>
-void Simulation<D>::migrate() {
-  // A point moves under a cell per step and a slab is at least two strips, so a point that left its
-  // slab is in a neighbour's. After new slabs points may be farther from home: they hop until home.
+bool Simulation<D>::hop() {
   const int rank = comm_->rank(), size = comm_->size();
   const int below = rank > 0 ? rank - 1 : -1, above = rank + 1 < size ? rank + 1 : -1;
-  for (;;) {
-    std::vector<std::size_t> down, up;
-    std::vector<char> keep(points_.size(), 1);
-    for (std::size_t p = 0; p < points_.size(); ++p) {
-      const int owner = slabs_.owner(strip_of(points_.x[p][1]));
-      if (owner == rank) continue;
-      (owner < rank ? down : up).push_back(p);
-      keep[p] = 0;
-    }
-    const std::int64_t moving = comm_->sum(static_cast<std::int64_t>(down.size() + up.size()));
-    if (moving == 0) return;
-    const std::vector<char> from_above = comm_->exchange(below, pack_points(points_, down), above);
-    const std::vector<char> from_below = comm_->exchange(above, pack_points(points_, up), below);
-    keep_points(points_, keep);
-    unpack_points(points_, from_above);
-    unpack_points(points_, from_below);
-    sort_by_id(points_);
+  std::vector<std::size_t> down, up;
+  std::vector<char> keep(points_.size(), 1);
+  // Points two cells inside the slab are home whatever the shape function's first row: only those
+  // near its edges need their strip.
+  const double inf = std::numeric_limits<double>::infinity(), h = whole_geo_.h;
+  const double inside_from = rank > 0 ? whole_geo_.y_min + (slabs_.first_strip(rank) * StripBins::kRowsPerStrip + 2) * h : -inf;
+  const double inside_to = above >= 0 ? whole_geo_.y_min + (slabs_.end_strip(rank) * StripBins::kRowsPerStrip - 2) * h : inf;
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    const double y = points_.x[p][1];
+    if (y > inside_from && y < inside_to) continue;
+    const int owner = slabs_.owner(strip_of(y));
+    if (owner == rank) continue;
+    (owner < rank ? down : up).push_back(p);
+    keep[p] = 0;
+  }
+  // Sizes first, then the points, each in one round with both neighbours.
+  const std::vector<char> to_up = pack_points(points_, up), to_down = pack_points(points_, down);
+  std::vector<char> n_up(sizeof(std::uint64_t)), n_down(sizeof(std::uint64_t));
+  std::vector<char> from_up(sizeof(std::uint64_t)), from_down(sizeof(std::uint64_t));
+  const std::uint64_t sizes[2] = {to_up.size(), to_down.size()};
+  std::memcpy(n_up.data(), &sizes[0], sizeof(std::uint64_t));
+  std::memcpy(n_down.data(), &sizes[1], sizeof(std::uint64_t));
+  comm_->swap(above, n_up, from_up, below, n_down, from_down);
+  std::uint64_t incoming[2] = {0, 0};
+  if (above >= 0) std::memcpy(&incoming[0], from_up.data(), sizeof(std::uint64_t));
+  if (below >= 0) std::memcpy(&incoming[1], from_down.data(), sizeof(std::uint64_t));
+  from_up.assign(incoming[0], 0);
+  from_down.assign(incoming[1], 0);
+  comm_->swap(above, to_up, from_up, below, to_down, from_down);
+  if (!up.empty() || !down.empty()) keep_points(points_, keep);
+  const bool arrived = !from_up.empty() || !from_down.empty();
+  unpack_points(points_, from_up);
+  unpack_points(points_, from_down);
+  if (arrived) sort_by_id(points_);
+  return !up.empty() || !down.empty();
+}
+
+template <int D>
+void Simulation<D>::migrate() {
+  // A point moves under a cell per step and a slab is at least two strips, so a point that left its
+  // slab is in a neighbour's: one hop.
+  hop();
+}
+
+template <int D>
+void Simulation<D>::redistribute() {
+  // After new slabs points may be farther from home: they hop until every rank has only its own.
+  while (comm_->sum(static_cast<std::int64_t>(hop())) > 0) {
   }
 }
 
@@ -192,15 +223,43 @@ std::vector<std::int64_t> Simulation<D>::work_per_strip() const {
 
 template <int D>
 void Simulation<D>::rebalance() {
-  // Every kBalanceSteps steps the slabs follow the work, when that evens it out noticeably.
+  // Every kBalanceSteps steps the slabs follow the work, when that evens it out by 5 % or more.
+  // The work of a strip is its points' weights (decomposition.hpp) times the time a weight took on
+  // the rank that holds it since the last balance: the weights say where the points are, the times
+  // what they cost there (plastic flow, compressed cells, a busy core). The slabs then depend on the
+  // machine, the results do not (halo.hpp).
   constexpr std::int64_t kBalanceSteps = 20;
   if (clock_.steps - last_balance_step_ < kBalanceSteps && clock_.steps > 1) return;
+  const auto now = std::chrono::steady_clock::now();
+  const double busy = std::chrono::duration<double>(now - balance_clock_).count() -
+                      (comm_->traffic().seconds - balance_mpi_seconds_);
+  const bool measured = clock_.steps > 1;  // the first step's time holds the set-up's first touches
   last_balance_step_ = clock_.steps;
-  const std::vector<std::int64_t> work = work_per_strip();
-  const Decomposition better = Decomposition::balanced(work, comm_->size(), first_strip_end_needed());
-  if (better == slabs_ || slabs_.imbalance(work) < better.imbalance(work) + 0.02) return;
+  const std::vector<std::int64_t> weights = work_per_strip();
+  const int ranks = comm_->size(), rank = comm_->rank();
+  std::int64_t mine = 0;
+  for (int s = slabs_.first_strip(rank); s < slabs_.end_strip(rank); ++s) mine += weights[static_cast<std::size_t>(s)];
+  std::vector<double> seconds_per_weight(static_cast<std::size_t>(ranks), 0.0);
+  seconds_per_weight[static_cast<std::size_t>(rank)] = measured && mine > 0 ? std::max(busy, 0.0) / static_cast<double>(mine) : 0.0;
+  comm_->max(seconds_per_weight.data(), ranks);
+  double typical = 0.0;  // ranks that measured nothing take the mean of those that did
+  int counted = 0;
+  for (double f : seconds_per_weight)
+    if (f > 0.0) typical += f, ++counted;
+  typical = counted > 0 ? typical / counted : 1.0;
+  std::vector<std::int64_t> work(weights.size());
+  for (std::size_t s = 0; s < weights.size(); ++s) {
+    const double f = seconds_per_weight[static_cast<std::size_t>(slabs_.owner(static_cast<int>(s)))];
+    work[s] = static_cast<std::int64_t>(std::llround(static_cast<double>(weights[s]) * (f > 0.0 ? f : typical) / typical * 64.0));
+  }
+  balance_clock_ = std::chrono::steady_clock::now();
+  balance_mpi_seconds_ = comm_->traffic().seconds;
+  const Decomposition better = Decomposition::balanced(work, ranks, first_strip_end_needed());
+  imbalance_ = slabs_.imbalance(work);
+  if (better == slabs_ || imbalance_ < better.imbalance(work) + 0.05) return;
   take_slab(better);
-  migrate();
+  redistribute();
+  imbalance_ = better.imbalance(work);
 }
 
 template <int D>
@@ -219,10 +278,11 @@ StepStatus Simulation<D>::agree(const StepStatus& mine) const {
 template <int D>
 StepStatus Simulation<D>::step(double dt) {
   const PointRange reached = unreached_.computed(points_);             // all but what nothing has reached
-  const bool binned = kernels_.bin(bins_, points_, reached, grid_.geo);  // strips for race-free scatter
-  if (const StepStatus s = agree(binned ? StepStatus{} : StepStatus{StepStatus::Code::left_grid, kNoPoint});
-      !s.ok())
-    return s;                                                          // moves check this; here only a bad restart
+  if (!kernels_.bin(bins_, points_, reached, grid_.geo)) {             // strips for race-free scatter
+    // Moves check this, and restarts check their points: a bug. Every rank stops (main).
+    if (comm_->parallel()) throw std::logic_error("a material point outside the grid's rows at binning");
+    return {StepStatus::Code::left_grid, kNoPoint};
+  }
   const RowRange rows = bins_.rows();
   const bool musl = model_.scheme == UpdateScheme::musl;
   grid_.reset(rows);                                                   // reset grid
@@ -243,11 +303,12 @@ StepStatus Simulation<D>::step(double dt) {
       points_, reached, grid_, stencils_, musl ? grid_.v_remap : grid_.v, dt);
   unreached_.advance(points_, dt);                                     //   the rest: x_p += v0 dt
   StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt);  // E, F, s, P, q
-  const StepStatus failed = agree_on(update, left);                    // the ranks' maxima, sums and failures
+  const StepStatus failed = agree_on(update, left);                    // the ranks' maxima and failures
   clock_.time += dt;
   ++clock_.steps;
   clock_.max_signal = std::max(update.max_signal, unreached_.signal());
-  clock_.work_mismatch += update.work_mismatch.value();
+  if (comm_->parallel()) pending_mismatch_.push_back(update.work_mismatch);  // settle() sums them
+  else clock_.work_mismatch += update.work_mismatch.value();
   if (!failed.ok()) return failed;
   for (auto& e : effects_)
     if (const StepStatus s = agree(with_id(e->after_point_update(points_, dt))); !s.ok()) return s;
@@ -261,7 +322,15 @@ StepStatus Simulation<D>::step(double dt) {
 }
 
 template <int D>
-StepStatus Simulation<D>::agree_on(StressUpdateResult& update, std::size_t left) const {
+void Simulation<D>::settle() {
+  if (pending_mismatch_.empty()) return;
+  comm_->sum(pending_mismatch_.data(), static_cast<int>(pending_mismatch_.size()));
+  for (const ExactSum& step : pending_mismatch_) clock_.work_mismatch += step.value();  // in step order, as one rank
+  pending_mismatch_.clear();
+}
+
+template <int D>
+StepStatus Simulation<D>::agree_on(StressUpdateResult& update, std::size_t left) {
   const auto id_of = [&](std::size_t p) { return p < points_.size() ? static_cast<std::size_t>(points_.id[p]) : p; };
   const std::size_t bad = id_of(update.first_bad), outside = id_of(left);
   if (!comm_->parallel()) {
@@ -270,11 +339,11 @@ StepStatus Simulation<D>::agree_on(StressUpdateResult& update, std::size_t left)
     return {};
   }
   const double none = -std::numeric_limits<double>::infinity();
-  double agreed[3] = {update.max_signal, bad == kNoPoint ? none : -static_cast<double>(bad),
-                      outside == kNoPoint ? none : -static_cast<double>(outside)};
-  comm_->max(agreed, 3);
-  comm_->sum(&update.work_mismatch, 1);
+  double agreed[4] = {update.max_signal, bad == kNoPoint ? none : -static_cast<double>(bad),
+                      outside == kNoPoint ? none : -static_cast<double>(outside), static_cast<double>(stop_signal())};
+  comm_->max(agreed, 4);
   update.max_signal = agreed[0];
+  stop_signal_ = static_cast<int>(agreed[3]);
   if (agreed[1] != none) return {StepStatus::Code::bad_state, static_cast<std::size_t>(-agreed[1])};
   if (agreed[2] != none) return {StepStatus::Code::left_grid, static_cast<std::size_t>(-agreed[2])};
   return {};

@@ -51,6 +51,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   const std::int64_t start_steps = sim.steps();
   OutputSchedule& sch = run.schedule;
   auto take_snapshot = [&] {
+    sim.settle();
     run.clock = sim.clock();
     out.snapshot(sim, run);
     ++sch.snapshot_index;
@@ -60,11 +61,12 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   const int all_threads = omp_get_max_threads();
   ThreadTuner threads(options.fixed_threads ? 1 : all_threads);
   const Comm& comm = sim.comm();
+  const Comm::Traffic traffic_start = comm.traffic();
   Progress progress(!options.quiet && comm.root(), sim.time(), end_time);
   // A signal to one rank stops them all after the same step (the ranks agree on it every step).
   int stop = 0;
   auto stop_requested = [&] {
-    stop = comm.parallel() ? static_cast<int>(comm.max(static_cast<double>(stop_signal()))) : stop_signal();
+    stop = comm.parallel() ? sim.agreed_stop_signal() : stop_signal();
     return stop != 0;
   };
   const auto wall_start = WallClock::now();
@@ -94,7 +96,18 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   progress.finish();
   result.threads = all_threads;
   result.ranks = comm.size();
-  if (comm.parallel()) result.imbalance = sim.imbalance();
+  if (comm.parallel()) {
+    const Comm::Traffic t = comm.traffic();
+    const double steps = std::max<double>(1.0, static_cast<double>(sim.steps() - start_steps));
+    std::int64_t sent[2] = {static_cast<std::int64_t>(t.bytes - traffic_start.bytes),
+                            static_cast<std::int64_t>(t.messages - traffic_start.messages)};
+    comm.sum(sent, 2);
+    result.mpi_bytes_per_step = static_cast<double>(sent[0]) / steps;
+    result.mpi_messages_per_step = static_cast<double>(sent[1]) / steps;
+    result.mpi_seconds = comm.max(t.seconds - traffic_start.seconds);
+    result.mpi_seconds_least = comm.min(t.seconds - traffic_start.seconds);
+    result.imbalance = sim.imbalance();
+  }
   result.steps_with_fewer_threads = threads.steps_below_max();
   result.wall_seconds = std::chrono::duration<double>(WallClock::now() - wall_start).count();
 
@@ -148,14 +161,17 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
                "  \"point_steps_per_second\": %s,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n"
                "  \"mass_error\": %s,\n  \"momentum_error\": %s,\n  \"energy_error\": %s,\n"
                "  \"porosity\": %s,\n  \"voids\": %zu,\n  \"symmetry\": %s,\n  \"dimension\": %d,\n  \"ranks\": %d,\n"
-               "  \"imbalance\": %s\n}\n",
+               "  \"imbalance\": %s,\n  \"mpi_bytes_per_step\": %s,\n  \"mpi_messages_per_step\": %s,\n"
+               "  \"mpi_seconds\": %s,\n  \"mpi_seconds_least\": %s\n}\n",
                r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps),
                json_number(r.start_time).c_str(), json_number(r.end_time).c_str(), json_number(r.wall_seconds).c_str(),
                r.points, json_number(r.point_steps_per_second).c_str(), r.threads,
                static_cast<long long>(r.steps_with_fewer_threads), json_number(r.mass_error).c_str(),
                json_number(r.momentum_error).c_str(), json_number(r.energy_error).c_str(),
                json_number(r.porosity).c_str(), r.voids, r.symmetry ? "true" : "false", r.dimension, r.ranks,
-               json_number(r.imbalance).c_str());
+               json_number(r.imbalance).c_str(), json_number(r.mpi_bytes_per_step).c_str(),
+               json_number(r.mpi_messages_per_step).c_str(), json_number(r.mpi_seconds).c_str(),
+               json_number(r.mpi_seconds_least).c_str());
   flush_or_throw(f.get(), path.string());
   f.reset();
   fs::rename(tmp, path);

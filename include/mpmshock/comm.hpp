@@ -54,6 +54,11 @@ class Comm {
 
   // Sends `out` to rank `to` and receives what rank `from` sends to us (either may be -1: none).
   std::vector<char> exchange(int to, const std::vector<char>& out, int from) const;
+  // One round with both neighbours at once: `to_up` to rank up, `to_down` to rank down, and from
+  // them into `from_up` and `from_down`, which are already sized to what they send (-1: no such
+  // neighbour, or nothing to send or receive that way; an empty buffer: nothing either).
+  void swap(int up, const std::vector<char>& to_up, std::vector<char>& from_up, int down,
+            const std::vector<char>& to_down, std::vector<char>& from_down) const;
   // Every rank's bytes, in rank order, at rank 0 (empty elsewhere).
   std::vector<std::vector<char>> gather(const std::vector<char>& mine) const;
   // Rank 0's bytes at every rank.
@@ -65,8 +70,17 @@ class Comm {
   // Stops every rank with this exit code (after an error one rank alone met).
   [[noreturn]] void abort(int code) const;
 
+  // What this rank has sent and how long it spent in MPI calls (waiting included), since start.
+  struct Traffic {
+    std::uint64_t bytes = 0, messages = 0;
+    double seconds = 0.0;
+  };
+  const Traffic& traffic() const { return traffic_; }
+
  private:
   int rank_ = 0, size_ = 1;
+  mutable Traffic traffic_;
+
 };
 
 }  // namespace mpmshock

@@ -54,16 +54,12 @@ class Halo {
   // Between the colours: the rank whose boundary strip is even sends its partial sums.
   template <class... Fields>
   void between_colours(Fields&... fields) const {
-    if (!active()) return;
-    pass(upper_even_, !lower_even_, fields...);   // upwards: my even top strip; from below, if mine is odd
-    pass_down(lower_even_, !upper_even_, fields...);
+    if (active()) pass(upper_even_, lower_even_, fields...);
   }
   // After the colours: the rank whose boundary strip is odd sends the finished sums back.
   template <class... Fields>
   void after_colours(Fields&... fields) const {
-    if (!active()) return;
-    pass(!upper_even_, lower_even_, fields...);
-    pass_down(!lower_even_, upper_even_, fields...);
+    if (active()) pass(!upper_even_, !lower_even_, fields...);
   }
 
  private:
@@ -93,26 +89,31 @@ class Halo {
     at += bytes;
   }
 
-  // One upward exchange: my upper rows to the rank above (if `send`), the rows I share with the
-  // rank below from it (if `receive`), which overwrite mine.
-  template <class... Fields>
-  void pass(bool send, bool receive, Fields&... fields) const {
-    std::vector<char> out;
-    const int to = send ? above_ : -1, from = receive ? below_ : -1;
-    if (to >= 0) (pack(out, fields, upper_), ...);
-    const std::vector<char> in = comm_->exchange(to, out, from);
-    std::size_t at = 0;
-    if (from >= 0) (unpack(in, at, fields, lower_), ...);
+  template <class T>
+  std::size_t bytes_of(const std::vector<T>&, RowRange rows) const {
+    return (geo_.row_start(rows.end) - geo_.row_start(rows.begin)) * sizeof(T);
   }
-  // One downward exchange: my lower rows to the rank below, my upper rows from the rank above.
+
+  // One round with both neighbours: this rank sends its upper rows up if `send_up` and its lower
+  // rows down if `send_down`; a neighbour sends to it exactly when it does not send to that
+  // neighbour (one of each pair of strips is even), and what arrives overwrites the shared rows.
   template <class... Fields>
-  void pass_down(bool send, bool receive, Fields&... fields) const {
-    std::vector<char> out;
-    const int to = send ? below_ : -1, from = receive ? above_ : -1;
-    if (to >= 0) (pack(out, fields, lower_), ...);
-    const std::vector<char> in = comm_->exchange(to, out, from);
+  void pass(bool send_up, bool send_down, Fields&... fields) const {
+    std::vector<char> to_up, to_down, from_up, from_down;
+    const int up = above_, down = below_;
+    if (up >= 0) {
+      if (send_up) (pack(to_up, fields, upper_), ...);
+      else from_up.resize((bytes_of(fields, upper_) + ...));
+    }
+    if (down >= 0) {
+      if (send_down) (pack(to_down, fields, lower_), ...);
+      else from_down.resize((bytes_of(fields, lower_) + ...));
+    }
+    comm_->swap(up, to_up, from_up, down, to_down, from_down);
     std::size_t at = 0;
-    if (from >= 0) (unpack(in, at, fields, upper_), ...);
+    if (!from_up.empty()) (unpack(from_up, at, fields, upper_), ...);
+    at = 0;
+    if (!from_down.empty()) (unpack(from_down, at, fields, lower_), ...);
   }
 };
 

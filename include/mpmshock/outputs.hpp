@@ -41,7 +41,7 @@ class Outputs {
   }
 
   // One row per region in regions.csv and one in conservation.csv, at the simulation's time.
-  void sample(const Simulation<D>& sim, double dt);
+  void sample(Simulation<D>& sim, double dt);
   // snapshot_NNNNN.h5 (NNNNN = run.schedule.snapshot_index) and the XDMF index.
   void snapshot(const Simulation<D>& sim, const RunState& run);
   // The conserved totals of the whole impact.

@@ -39,6 +39,10 @@ struct RunResult {
   int threads = 1;                           // the most threads the run used (per rank)
   int ranks = 1;                             // MPI ranks (decomposition.hpp)
   double imbalance = 1.0;                    // MPI: the largest rank's work over the mean, at the end
+  double mpi_bytes_per_step = 0.0;           // MPI: bytes all ranks sent per step (halos, moving points, sums)
+  double mpi_messages_per_step = 0.0;        // MPI: messages (and collective calls) of all ranks per step
+  double mpi_seconds = 0.0;                  // MPI: the most wall time a rank spent in MPI calls, waits included
+  double mpi_seconds_least = 0.0;            // MPI: the least (about the cost of communicating itself)
   std::int64_t steps_with_fewer_threads = 0;  // steps the thread tuner ran with fewer (thread_tuner.hpp)
   double mass_error = 0.0, momentum_error = 0.0, energy_error = 0.0;  // relative, since t = 0
   double porosity = 1.0;                                             // from the material points

@@ -8,6 +8,7 @@
 // numbers one process would, for its points: the outputs are the same bits on any number of ranks.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <ostream>
@@ -84,7 +85,12 @@ class Simulation {
 
   double time() const { return clock_.time; }
   std::int64_t steps() const { return clock_.steps; }
+  // MPI: the clock's work mismatch waits for settle(), which agrees on the steps' sums at once (one
+  // collective per sample instead of per step); on one rank it is always up to date.
   const Clock& clock() const { return clock_; }
+  void settle();
+  // MPI: the stop signal any rank got, agreed in the last step (0: none).
+  int agreed_stop_signal() const { return stop_signal_; }
   // This rank's points, in id order (all of them on one rank).
   const Particles<D>& particles() const { return points_; }
   Particles<D>& particles_for_testing() { return points_; }
@@ -113,7 +119,8 @@ class Simulation {
   // Work per strip of every rank's points (decomposition.hpp), and the largest rank's share of it
   // over the mean, for the benchmarks.
   std::vector<std::int64_t> work_per_strip() const;
-  double imbalance() const { return slabs_.imbalance(work_per_strip()); }
+  // The largest rank's work over the mean, by the times the ranks measured at the last balance.
+  double imbalance() const { return imbalance_; }
 
  private:
   void remember_unreached();  // the unreached boundaries into the clock, for snapshots
@@ -122,11 +129,13 @@ class Simulation {
   void keep_own_points(Particles<D>& all);
   int strip_of(double y) const;
   void migrate();     // points that crossed into a neighbour's slab move there
+  bool hop();         // one move of every point not home towards it; whether this rank sent any
+  void redistribute();  // after new slabs: every point home, however far
   void rebalance();   // new slabs when the work has drifted
   StepStatus agree(const StepStatus& mine) const;  // the same status on every rank: the lowest id's
   // The step's maximum signal and work mismatch over every rank, and its failure (a bad state before
   // a point off the grid, each of the lowest id).
-  StepStatus agree_on(StressUpdateResult& update, std::size_t left) const;
+  StepStatus agree_on(StressUpdateResult& update, std::size_t left);
   int first_strip_end_needed() const;
   StepStatus with_id(StepStatus s) const;  // an effect's storage index as the point's id
   void describe_point(std::ostream& out, StepStatus::Code code, std::size_t p, std::size_t id) const;  // rank 0's slab must reach this strip (symmetry_plane.hpp)
@@ -136,6 +145,11 @@ class Simulation {
   Halo<D> halo_;
   std::size_t total_points_ = 0;
   std::int64_t last_balance_step_ = 0;
+  std::chrono::steady_clock::time_point balance_clock_ = std::chrono::steady_clock::now();
+  double balance_mpi_seconds_ = 0.0;  // the rank's time in MPI at the last balance
+  double imbalance_ = 1.0;           // by the last balance's measured work
+  std::vector<ExactSum> pending_mismatch_;  // MPI: this rank's work mismatch of the steps not settled
+  int stop_signal_ = 0;
   Model model_;
   Particles<D> points_;
   Grid<D> grid_;
