@@ -85,7 +85,7 @@ double point_steps_per_second(const Scene& scene, int steps, std::size_t& points
   InitialState<2> initial = build_initial_state<2>(scene);
   Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
   points = sim.particles().size();
-  bytes = sim.particles().bytes_per_point();
+  bytes = sim.particles().bytes_per_point() + step_scratch_bytes<2>(scene);
   while (sim.time() < 100e-9) sim.step(sim.stable_time_step());
   return timed_steps(sim, steps);
 }
@@ -185,7 +185,7 @@ Scene speed_scene(double width, std::vector<std::string> settings = {"symmetry=o
 struct SpeedResult {
   double rate = 0.0;             // point-steps per second
   double peak_bytes = 0.0;       // peak resident memory of the process [bytes]
-  double layout_bytes = 0.0;     // bytes per point of the particle layout (Particles::bytes_per_point)
+  double layout_bytes = 0.0;     // bytes per point of the particle layout and the step's scratch
   double modelled_traffic = 0.0; // bytes a step must move per point, by the model below
   std::size_t points = 0;
 };
@@ -206,17 +206,19 @@ double peak_resident_bytes() {
 
 // The bytes one step must move per point if each pass over the points reads and writes only the
 // fields it needs, once, and the grid stays in cache (STREAM's convention: a written byte counts
-// once). Passes (transfer.hpp, constitutive.hpp): bin (x), P2G (x, F, m, V0, v, s, P, q), G2P with
-// the MUSL re-map (x, F, m, v; writes v), gradient, work and move (x, F, V0, m, P, q, s; writes L,
-// work, x), point update (L, work, F, E, P, q, s, eps_p; writes F, E, P, q, s, eps_p).
+// once). Passes (transfer.hpp, constitutive.hpp): bin (x), P2G (x, F, m, V0, v, s, P, q; writes the
+// stencil), G2P with the MUSL re-map (the stencil, m, v; writes v), gradient, work and move (the
+// stencil, x, F, V0, m, P, q, s; writes L, work, x), point update (L, work, F, E, P, q, s, eps_p;
+// writes F, E, P, q, s, eps_p). The stencil is bspline2's (the speed scene's).
 template <int D>
 double modelled_traffic(const Particles<D>& p) {
   const double x = sizeof(Vec<D>), v = sizeof(Vec<D>), F = sizeof(Mat<D>), L = sizeof(Mat<D>), d = sizeof(double);
+  const double st = sizeof(Stencil<3, D>);
   const double s = p.has_strength() ? sizeof(Deviator<D>) + d : 0.0;  // s and eps_p
   const double bin = x + 4.0;                                           // + the point's bin index
-  const double p2g = x + F + 2 * d + v + s + 2 * d;
-  const double g2p = x + F + d + v + v;
-  const double move = x + F + 2 * d + 2 * d + s + (L + d + x);
+  const double p2g = x + F + 2 * d + v + s + 2 * d + st;
+  const double g2p = st + d + v + v;
+  const double move = st + x + F + 2 * d + 2 * d + s + (L + d + x);
   const double update = (L + d + F + 3 * d + s) + (F + 3 * d + s);
   return bin + p2g + g2p + move + update;
 }
@@ -261,7 +263,7 @@ SpeedResult measure_speed(double width, int threads, int steps) {
       InitialState<D> initial = build_initial_state<D>(scene);
       Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
       r.points = sim.particles().size();
-      r.layout_bytes = static_cast<double>(sim.particles().bytes_per_point());
+      r.layout_bytes = static_cast<double>(sim.particles().bytes_per_point() + step_scratch_bytes<D>(scene));
       r.modelled_traffic = modelled_traffic(sim.particles());
       for (int k = 0; k < 3; ++k) sim.step(sim.stable_time_step());  // first touch, shock formed
       r.rate = timed_steps(sim, steps);
@@ -328,7 +330,7 @@ int speed_mode(int repeats, double max_points, int only_dimension) {
               repeats, all);
   std::printf("memory bandwidth (STREAM triad, %d threads): %.2f GB/s\n\n", all, bandwidth / 1e9);
   std::printf("| points | threads | point-steps/s (M) | ns per point-step | bytes/point (peak RSS) | "
-              "bytes/point (layout) | modelled bytes moved per point-step | share of the bandwidth bound |\n");
+              "bytes/point (layout and step scratch) | modelled bytes moved per point-step | share of the bandwidth bound |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (const Size& size : sizes)
     for (int threads : {1, all}) {
@@ -354,7 +356,7 @@ int speed_mode(int repeats, double max_points, int only_dimension) {
   std::printf("\n3D: the speed scene in a column as deep as it is wide, 2 x 2 x 2 points per cell (27-node stencils), "
               "every point computed\n\n");
   std::printf("| points | threads | point-steps/s (M) | ns per point-step | bytes/point (peak RSS) | "
-              "bytes/point (layout) | cost per point-step vs 2D at the nearest size |\n");
+              "bytes/point (layout and step scratch) | cost per point-step vs 2D at the nearest size |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const Size& size : sizes_3d)
     for (int threads : {1, all}) {
