@@ -48,7 +48,7 @@ def _models(text):
 def _jobs(text):
     jobs = int(text)
     if jobs < 1:
-        raise PostError(f"--jobs takes a whole number >= 1 (got '{text}')")
+        raise PostError(f"--jobs and --ranks take a whole number >= 1 (got '{text}')")
     return jobs
 
 
@@ -77,7 +77,9 @@ def build_parser():
     parser.add_argument("--fig", type=argument_type(_figures), default=list(FIGURES), metavar="N[,N...]",
                         help="only these figures, and only the runs they need (default: all 13)")
     parser.add_argument("--jobs", type=argument_type(_jobs), default=1, metavar="J",
-                        help="runs at once, each on max(1, cores // J) threads (default 1)")
+                        help="runs at once, each on max(1, cores // (J R)) threads (default 1)")
+    parser.add_argument("--ranks", type=argument_type(_jobs), default=1, metavar="R",
+                        help="MPI ranks per run, through mpirun (default 1: no MPI); the results are the same bits")
     parser.add_argument("--temperature-models", type=argument_type(_models), default=list(TEMPERATURE_MODELS),
                         metavar="energy,paper", help="temperature models to run (default both; paper needs the "
                         "scene key temperature_model and is skipped with a message where mpmshock lacks it)")
@@ -182,7 +184,7 @@ def main(argv=None):
                 "paper model")
         planned = plan_runs(cases_for(args.fig), models, out / "runs", args.quick, combined)
         say(f"{len(planned)} runs for figure(s) {','.join(map(str, args.fig))}" + (" (quick)" if args.quick else ""))
-        records = execute_all(planned, binary, defaults, args.jobs)
+        records = execute_all(planned, binary, defaults, args.jobs, args.ranks)
         say(f"runs done after {time.monotonic() - started:.0f} s")
 
         made = make_figures(args.fig, CampaignRuns(out / "runs", args.quick), out)

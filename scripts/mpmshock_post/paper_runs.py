@@ -148,21 +148,24 @@ def decide(run, defaults):
     return "fresh", None
 
 
-def command(run, binary, action, snapshot, threads):
+def command(run, binary, action, snapshot, threads, ranks=1):
+    """The simulator's command line; on `ranks` > 1 MPI ranks through mpirun (the outputs are the same
+    bits as one process's, README "Running on a cluster")."""
+    launch = ["mpirun", "-q", "--bind-to", "none", "-np", str(ranks)] if ranks > 1 else []
     if action == "resume":
         start = [str(binary), "--restart", str(snapshot)]
     else:
         start = [str(binary), str(run.scene)]
         for override in [*run.overrides, f"output_dir={run.run_dir}"]:
             start += ["--set", override]
-    return start + ["--quiet", "--force", "--threads", str(threads)]
+    return launch + start + ["--quiet", "--force", "--threads", str(threads)]
 
 
 def say(text):
     print(f"reproduce-paper: {text}", file=sys.stderr, flush=True)
 
 
-def execute(run, binary, defaults, threads):
+def execute(run, binary, defaults, threads, ranks=1):
     """Reuses, resumes or runs one case; returns its record (action, wall seconds) or raises
     PostError naming the case and its log."""
     action, snapshot = decide(run, defaults)
@@ -171,7 +174,7 @@ def execute(run, binary, defaults, threads):
         wall = record.get("wall_seconds")
         say(f"{run.name}: reused ({run.run_dir}" + (f", ran in {wall:.1f} s)" if wall else ")"))
         return {**record, "action": "reused"}
-    cmd = command(run, binary, action, snapshot, threads)
+    cmd = command(run, binary, action, snapshot, threads, ranks)
     say(f"{run.name}: started ({'resumed from ' + snapshot.name if action == 'resume' else 'fresh'})")
     run.run_dir.parent.mkdir(parents=True, exist_ok=True)
     started = time.monotonic()
@@ -180,6 +183,9 @@ def execute(run, binary, defaults, threads):
         log.flush()
         env = dict(os.environ)
         env.setdefault("OMP_WAIT_POLICY", "PASSIVE")  # spinning threads hurt on a shared machine (README)
+        if ranks > 1 and os.geteuid() == 0:  # Open MPI runs as root only when told
+            env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+            env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
         done = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)
     wall = time.monotonic() - started
     if done.returncode != 0:
@@ -187,7 +193,7 @@ def execute(run, binary, defaults, threads):
         raise PostError(f"case {run.name} failed (mpmshock {how}); see its log {run.log}")
     # A resumed run's time is that of its last segment: an interrupted one leaves no record.
     record = {"action": "resumed" if action == "resume" else "ran", "wall_seconds": wall,
-              "threads": threads, "command": cmd}
+              "threads": threads, "ranks": ranks, "command": cmd}
     run.record.write_text(json.dumps(record, indent=1) + "\n")
     say(f"{run.name}: finished in {wall:.1f} s")
     return record
@@ -205,15 +211,16 @@ def read_record(run):
         return {}
 
 
-def execute_all(runs, binary, defaults, jobs):
-    """Every run, `jobs` at a time, each on max(1, cores // jobs) threads; name -> record. After a
+def execute_all(runs, binary, defaults, jobs, ranks=1):
+    """Every run, `jobs` at a time, each on `ranks` MPI ranks of max(1, cores // (jobs ranks)) threads;
+    name -> record. After a
     failure the runs not yet started are cancelled, those under way finish, and the first failure
     is raised."""
     cores = len(os.sched_getaffinity(0))
-    threads = max(1, cores // jobs)
+    threads = max(1, cores // (jobs * ranks))
     records, failures = {}, []
     with ThreadPoolExecutor(max_workers=jobs) as pool:
-        futures = {pool.submit(execute, run, binary, defaults, threads): run for run in runs}
+        futures = {pool.submit(execute, run, binary, defaults, threads, ranks): run for run in runs}
         for future, run in futures.items():
             if future.cancelled():
                 continue

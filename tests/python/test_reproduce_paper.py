@@ -16,7 +16,8 @@ import pytest
 from conftest import ROOT, SCRIPTS, simulate
 from mpmshock_post import paper_runs
 from mpmshock_post.paper import build_parser
-from mpmshock_post.paper_runs import FIGURE_CASES, PlannedRun, cases_for, decide, plan_runs, quick_overrides
+from mpmshock_post.paper_runs import (FIGURE_CASES, PlannedRun, cases_for, command, decide, plan_runs,
+                                     quick_overrides)
 from mpmshock_post.scene_input import key_defaults
 
 REPRODUCE = SCRIPTS / "reproduce-paper"
@@ -93,6 +94,10 @@ def test_plan_names_and_overrides(tmp_path):
     assert runs[0].log == tmp_path / "base.log"
     full = plan_runs(["base"], ["energy"], tmp_path, quick=False)
     assert full[0].overrides == []
+    alone = command(full[0], "mpmshock", "fresh", None, 2)
+    assert alone[0] == "mpmshock" and alone[-2:] == ["--threads", "2"], alone
+    spread = command(full[0], "mpmshock", "resume", "s.h5", 1, ranks=2)
+    assert spread[:6] == ["mpirun", "-q", "--bind-to", "none", "-np", "2"] and spread[6:9] == ["mpmshock", "--restart", "s.h5"]
 
 
 def test_quick_scenes_are_valid(mpmshock, defaults):
