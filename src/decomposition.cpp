@@ -99,6 +99,40 @@ void keep_points(Particles<D>& p, const std::vector<char>& keep) {
 }
 
 template <int D>
+void merge_points(Particles<D>& p, const std::vector<char>& keep, const std::vector<std::vector<char>>& arrivals) {
+  const std::size_t before = p.size();
+  std::vector<std::size_t> bounds{before};  // the sorted runs: the kept points, then each batch
+  for (const std::vector<char>& batch : arrivals) {
+    unpack_points(p, batch);
+    bounds.push_back(p.size());
+  }
+  std::vector<std::size_t> order;
+  order.reserve(p.size());
+  for (std::size_t q = 0; q < before; ++q)
+    if (keep[q]) order.push_back(q);
+  for (std::size_t b = 0; b + 1 < bounds.size(); ++b) {  // merge each batch in
+    if (bounds[b] == bounds[b + 1]) continue;
+    std::vector<std::size_t> merged;
+    merged.reserve(order.size() + bounds[b + 1] - bounds[b]);
+    std::size_t i = 0, j = bounds[b];
+    while (i < order.size() || j < bounds[b + 1]) {
+      if (j == bounds[b + 1] || (i < order.size() && p.id[order[i]] < p.id[j])) merged.push_back(order[i++]);
+      else merged.push_back(j++);
+    }
+    order.swap(merged);
+  }
+  bool identity = true;
+  for (std::size_t k = 0; k < order.size() && identity; ++k) identity = order[k] == k;
+  if (identity && order.size() == p.size()) return;  // nothing left and every arrival after the rest
+  p.for_each_member([&](auto field) {
+    auto& values = p.*field;
+    std::decay_t<decltype(values)> merged(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) merged[k] = values[order[k]];
+    values.swap(merged);
+  });
+}
+
+template <int D>
 void sort_by_id(Particles<D>& p) {
   if (std::is_sorted(p.id.begin(), p.id.end())) return;
   std::vector<std::size_t> order(p.size());
@@ -143,6 +177,7 @@ Particles<D> gather_points(const Particles<D>& mine, const Comm& comm) {
   template std::vector<char> pack_points<D>(const Particles<D>&, const std::vector<std::size_t>&); \
   template void unpack_points<D>(Particles<D>&, const std::vector<char>&);                       \
   template void keep_points<D>(Particles<D>&, const std::vector<char>&);                         \
+  template void merge_points<D>(Particles<D>&, const std::vector<char>&, const std::vector<std::vector<char>>&); \
   template void sort_by_id<D>(Particles<D>&);                                                    \
   template std::size_t index_of_id<D>(const Particles<D>&, std::uint32_t);                       \
   template std::size_t first_at_or_after<D>(const Particles<D>&, std::size_t);                   \

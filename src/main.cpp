@@ -13,6 +13,7 @@
 
 #include "mpmshock/hdf5_io.hpp"
 #include "mpmshock/run.hpp"
+#include "mpmshock/run_directory.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/signals.hpp"
 #include "mpmshock/version.hpp"
@@ -187,6 +188,8 @@ int main(int argc, char** argv) {
          mpmshock::kExitBadInput, false);
   } catch (const mpmshock::SceneError& e) {
     fail(e.what(), mpmshock::kExitBadInput, true);
+  } catch (const mpmshock::AgreedIoError& e) {
+    fail(e.what(), mpmshock::kExitIo, true);
   } catch (const std::exception& e) {
     fail(e.what(), mpmshock::kExitIo, false);
   }

@@ -258,8 +258,14 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
     throw SceneError("snapshot " + snapshot + ": " + e.what());
   }
   Simulation<D>& sim = *simulation;
+  // Whether the CSVs go on is rank 0's finding; every rank's output schedule follows it (probes.csv's
+  // next row time).
+  std::string appends = comm.root() ? std::string{append ? '1' : '0', fs::exists(dir / "probes.csv") ? '1' : '0'} : "";
+  comm.broadcast(appends);
+  append = appends[0] == '1';
+  const bool probes_go_on = append && appends[1] == '1';
   Outputs<D> out(scene, dir, append, std::move(mirror));
-  if (!probes.empty()) out.follow(std::move(probes), sim.time(), append && fs::exists(dir / "probes.csv"));
+  if (!probes.empty()) out.follow(std::move(probes), sim.time(), probes_go_on);
   out.keep_listing(std::move(earlier));
   // Resume the output schedule from the snapshot's time, by the rule the loop itself uses.
   resume_schedule(r.run.schedule, scene, t0, 1e-9 * r.run.schedule.last_dt);

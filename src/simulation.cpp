@@ -176,7 +176,8 @@ bool Simulation<D>::hop() {
     keep[p] = 0;
   }
   // Sizes first, then the points, each in one round with both neighbours.
-  const std::vector<char> to_up = pack_points(points_, up), to_down = pack_points(points_, down);
+  const std::vector<char> to_up = up.empty() ? std::vector<char>{} : pack_points(points_, up);
+  const std::vector<char> to_down = down.empty() ? std::vector<char>{} : pack_points(points_, down);
   std::vector<char> n_up(sizeof(std::uint64_t)), n_down(sizeof(std::uint64_t));
   std::vector<char> from_up(sizeof(std::uint64_t)), from_down(sizeof(std::uint64_t));
   const std::uint64_t sizes[2] = {to_up.size(), to_down.size()};
@@ -189,12 +190,9 @@ bool Simulation<D>::hop() {
   from_up.assign(incoming[0], 0);
   from_down.assign(incoming[1], 0);
   comm_->swap(above, to_up, from_up, below, to_down, from_down);
-  if (!up.empty() || !down.empty()) keep_points(points_, keep);
-  const bool arrived = !from_up.empty() || !from_down.empty();
-  unpack_points(points_, from_up);
-  unpack_points(points_, from_down);
-  if (arrived) sort_by_id(points_);
-  return !up.empty() || !down.empty();
+  const bool sent = !up.empty() || !down.empty();
+  if (sent || !from_up.empty() || !from_down.empty()) merge_points(points_, keep, {from_up, from_down});
+  return sent;
 }
 
 template <int D>
@@ -229,11 +227,13 @@ void Simulation<D>::rebalance() {
   // what they cost there (plastic flow, compressed cells, a busy core). The slabs then depend on the
   // machine, the results do not (halo.hpp).
   constexpr std::int64_t kBalanceSteps = 20;
-  if (clock_.steps - last_balance_step_ < kBalanceSteps && clock_.steps > 1) return;
-  const auto now = std::chrono::steady_clock::now();
-  const double busy = std::chrono::duration<double>(now - balance_clock_).count() -
-                      (comm_->traffic().seconds - balance_mpi_seconds_);
-  const bool measured = clock_.steps > 1;  // the first step's time holds the set-up's first touches
+  if (balanced_once_ && clock_.steps - last_balance_step_ < kBalanceSteps) return;
+  // The first balance (before the first step) goes by the weights alone; later ones by the time the
+  // steps since took, outside MPI calls (outputs are not steps: they do not count).
+  const double busy = busy_seconds_;
+  const bool measured = balanced_once_ && busy > 0.0;
+  balanced_once_ = true;
+  busy_seconds_ = 0.0;
   last_balance_step_ = clock_.steps;
   const std::vector<std::int64_t> weights = work_per_strip();
   const int ranks = comm_->size(), rank = comm_->rank();
@@ -252,8 +252,6 @@ void Simulation<D>::rebalance() {
     const double f = seconds_per_weight[static_cast<std::size_t>(slabs_.owner(static_cast<int>(s)))];
     work[s] = static_cast<std::int64_t>(std::llround(static_cast<double>(weights[s]) * (f > 0.0 ? f : typical) / typical * 64.0));
   }
-  balance_clock_ = std::chrono::steady_clock::now();
-  balance_mpi_seconds_ = comm_->traffic().seconds;
   const Decomposition better = Decomposition::balanced(work, ranks, first_strip_end_needed());
   imbalance_ = slabs_.imbalance(work);
   if (better == slabs_ || imbalance_ < better.imbalance(work) + 0.05) return;
@@ -262,25 +260,42 @@ void Simulation<D>::rebalance() {
   imbalance_ = better.imbalance(work);
 }
 
+namespace {
+
+// A status as one number whose maximum over the ranks is the failure of the lowest id (then the
+// lowest code), as one process meets it first; no failure is -inf. Ids are below 2^32, so the key
+// is exact in a double; an unknown point (kNoPoint) counts as id 2^40.
+constexpr double kUnknownPoint = 1099511627776.0;
+double status_key(const StepStatus& s) {
+  if (s.ok()) return -std::numeric_limits<double>::infinity();
+  const double id = s.point == kNoPoint ? kUnknownPoint : static_cast<double>(s.point);
+  return -(id * 4.0 + static_cast<double>(s.code));
+}
+StepStatus status_of_key(double key) {
+  if (key == -std::numeric_limits<double>::infinity()) return {};
+  const double k = -key, id = std::floor(k / 4.0);
+  return {static_cast<StepStatus::Code>(static_cast<int>(k - 4.0 * id)),
+          id == kUnknownPoint ? kNoPoint : static_cast<std::size_t>(id)};
+}
+
+}  // namespace
+
 template <int D>
 StepStatus Simulation<D>::agree(const StepStatus& mine) const {
   if (!comm_->parallel()) return mine;
-  // The failure of the lowest id (then the lowest code), as one process finds it first.
-  double key = mine.ok() ? -std::numeric_limits<double>::infinity()
-                         : -(static_cast<double>(mine.point) * 4.0 + static_cast<double>(mine.code));
-  key = comm_->max(key);
-  if (key == -std::numeric_limits<double>::infinity()) return {};
-  const double k = -key;
-  const auto id = static_cast<std::size_t>(k / 4.0);
-  return {static_cast<StepStatus::Code>(static_cast<int>(k - 4.0 * static_cast<double>(id))), id};
+  return status_of_key(comm_->max(status_key(mine)));
 }
 
 template <int D>
 StepStatus Simulation<D>::step(double dt) {
+  const auto started = std::chrono::steady_clock::now();
+  const double mpi_before = comm_->traffic().seconds;
+  if (comm_->parallel()) rebalance();                                  // MPI: slabs to the work
   const PointRange reached = unreached_.computed(points_);             // all but what nothing has reached
-  if (!kernels_.bin(bins_, points_, reached, grid_.geo)) {             // strips for race-free scatter
+  if (!kernels_.bin(bins_, points_, reached, grid_.geo) ||             // strips for race-free scatter
+      (comm_->parallel() && !bins_within_slab())) {
     // Moves check this, and restarts check their points: a bug. Every rank stops (main).
-    if (comm_->parallel()) throw std::logic_error("a material point outside the grid's rows at binning");
+    if (comm_->parallel()) throw std::logic_error("a material point outside its rank's grid rows at binning");
     return {StepStatus::Code::left_grid, kNoPoint};
   }
   const RowRange rows = bins_.rows();
@@ -303,22 +318,33 @@ StepStatus Simulation<D>::step(double dt) {
       points_, reached, grid_, stencils_, musl ? grid_.v_remap : grid_.v, dt);
   unreached_.advance(points_, dt);                                     //   the rest: x_p += v0 dt
   StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt);  // E, F, s, P, q
-  const StepStatus failed = agree_on(update, left);                    // the ranks' maxima and failures
+  StepStatus effect;  // MPI: the effects' checks are agreed with the step's (one collective)
+  if (comm_->parallel())
+    for (auto& e : effects_)
+      if (effect = with_id(e->after_point_update(points_, dt)); !effect.ok()) break;
+  const StepStatus failed = agree_on(update, left, effect);            // the ranks' maxima and failures
   clock_.time += dt;
   ++clock_.steps;
   clock_.max_signal = std::max(update.max_signal, unreached_.signal());
   if (comm_->parallel()) pending_mismatch_.push_back(update.work_mismatch);  // settle() sums them
   else clock_.work_mismatch += update.work_mismatch.value();
   if (!failed.ok()) return failed;
-  for (auto& e : effects_)
-    if (const StepStatus s = agree(with_id(e->after_point_update(points_, dt))); !s.ok()) return s;
+  if (!comm_->parallel())
+    for (auto& e : effects_)
+      if (const StepStatus s = e->after_point_update(points_, dt); !s.ok()) return with_id(s);
   unreached_.follow(points_);                                          // compute what the step reached
-  if (comm_->parallel()) {
-    migrate();                                                         // points into their new slabs
-    rebalance();                                                       //   and slabs to the work
-  }
+  if (comm_->parallel()) migrate();                                    // MPI: points into their new slabs
   remember_unreached();
+  busy_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() -
+                   (comm_->traffic().seconds - mpi_before);
   return {};
+}
+
+template <int D>
+bool Simulation<D>::bins_within_slab() const {
+  const RowRange rows = bins_.rows();
+  return rows.end <= rows.begin ||
+         (rows.begin >= grid_.geo.row0 && rows.end <= grid_.geo.row0 + grid_.geo.rows_held());
 }
 
 template <int D>
@@ -330,7 +356,7 @@ void Simulation<D>::settle() {
 }
 
 template <int D>
-StepStatus Simulation<D>::agree_on(StressUpdateResult& update, std::size_t left) {
+StepStatus Simulation<D>::agree_on(StressUpdateResult& update, std::size_t left, const StepStatus& effect) {
   const auto id_of = [&](std::size_t p) { return p < points_.size() ? static_cast<std::size_t>(points_.id[p]) : p; };
   const std::size_t bad = id_of(update.first_bad), outside = id_of(left);
   if (!comm_->parallel()) {
@@ -338,14 +364,17 @@ StepStatus Simulation<D>::agree_on(StressUpdateResult& update, std::size_t left)
     if (outside != kNoPoint) return {StepStatus::Code::left_grid, outside};
     return {};
   }
-  const double none = -std::numeric_limits<double>::infinity();
-  double agreed[4] = {update.max_signal, bad == kNoPoint ? none : -static_cast<double>(bad),
-                      outside == kNoPoint ? none : -static_cast<double>(outside), static_cast<double>(stop_signal())};
-  comm_->max(agreed, 4);
+  // A bad state before a point off the grid before an effect's failure, each of the lowest id.
+  double agreed[5] = {update.max_signal, status_key({StepStatus::Code::bad_state, bad}),
+                      status_key({StepStatus::Code::left_grid, outside}), status_key(effect),
+                      static_cast<double>(stop_signal())};
+  if (bad == kNoPoint) agreed[1] = -std::numeric_limits<double>::infinity();
+  if (outside == kNoPoint) agreed[2] = -std::numeric_limits<double>::infinity();
+  comm_->max(agreed, 5);
   update.max_signal = agreed[0];
-  stop_signal_ = static_cast<int>(agreed[3]);
-  if (agreed[1] != none) return {StepStatus::Code::bad_state, static_cast<std::size_t>(-agreed[1])};
-  if (agreed[2] != none) return {StepStatus::Code::left_grid, static_cast<std::size_t>(-agreed[2])};
+  stop_signal_ = static_cast<int>(agreed[4]);
+  for (int k = 1; k <= 3; ++k)
+    if (const StepStatus s = status_of_key(agreed[k]); !s.ok()) return s;
   return {};
 }
 

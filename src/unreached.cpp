@@ -81,17 +81,19 @@ PointRange UnreachedMaterial<D>::computed(const Particles<D>& pts) const {
 
 template <int D>
 void UnreachedMaterial<D>::measure_signal(const Model& model, const Particles<D>& pts) {
-  // Every unreached point has the same state (and the same speed, up or down): the signal of one.
-  const PointRange c = computed(pts);
-  const std::size_t sample = c.begin > 0 ? 0 : c.end;
-  double signal = 0.0;
+  // Every unreached point has the same state (and the same speed, up or down): the signal of one,
+  // the one one process takes (the first flyer point, else the first unreached target point), from
+  // the rank that holds it.
+  const std::size_t id = head_ > 0 ? 0 : tail_;
+  const std::size_t sample = id < points_ ? index_of_id(pts, static_cast<std::uint32_t>(id)) : pts.size();
+  double signal = id < points_ ? -std::numeric_limits<double>::infinity() : 0.0;
   if (sample < pts.size()) {
     Particles<D> one;
     one.enable_fields_of(pts);
     one.append_copy(pts, sample);
     signal = initial_signal_speed(one, model);
   }
-  signal_ = comm_->max(signal);
+  signal_ = std::max(comm_->max(signal), 0.0);
 }
 
 template <int D>

@@ -88,9 +88,10 @@ void exact_where_doubles_are_not() {
   CHECK(d.value() == 2 * std::numeric_limits<double>::denorm_min());
 }
 
-void within_an_ulp_of_the_exact_total() {
-  // Against a sum that long double (64-bit significand) holds exactly: terms of 40 bits at
-  // exponents within a span of 20, so every partial sum fits in 64 bits.
+void rounded_once_to_nearest() {
+  // Against a sum that long double (64-bit significand) holds exactly, converted to double with one
+  // rounding to nearest: terms of 40 bits at exponents within a span of 20, so every partial sum
+  // fits in 64 bits. And ties: 1 + 2^-53 rounds to 1 (even), 1 + 3 2^-53 to 1 + 2^-51.
   std::mt19937_64 rng(11);
   std::uniform_int_distribution<std::int64_t> digits(-(std::int64_t{1} << 40), std::int64_t{1} << 40);
   std::uniform_int_distribution<int> exponent(-10, 10);
@@ -102,9 +103,20 @@ void within_an_ulp_of_the_exact_total() {
       s.add(x);
       exact += x;
     }
-    const double rounded = static_cast<double>(exact);
-    CHECK(std::abs(s.value() - rounded) <= std::abs(rounded) * std::numeric_limits<double>::epsilon());
+    CHECK(same_bits(s.value(), static_cast<double>(exact)));
   }
+  ExactSum tie;
+  tie.add(1.0), tie.add(std::ldexp(1.0, -53));
+  CHECK(tie.value() == 1.0);
+  ExactSum up;
+  up.add(1.0), up.add(std::ldexp(3.0, -53));
+  CHECK(up.value() == 1.0 + std::ldexp(1.0, -51));
+  ExactSum sticky;  // just above the tie: up
+  sticky.add(1.0), sticky.add(std::ldexp(1.0, -53)), sticky.add(std::ldexp(1.0, -200));
+  CHECK(sticky.value() == 1.0 + std::ldexp(1.0, -52));
+  ExactSum negative;
+  negative.add(-1.0), negative.add(-std::ldexp(3.0, -53));
+  CHECK(negative.value() == -(1.0 + std::ldexp(1.0, -51)));
 }
 
 void nan_and_infinity_as_ieee() {
@@ -142,7 +154,7 @@ void many_terms_carry() {
 int main() {
   order_does_not_matter();
   exact_where_doubles_are_not();
-  within_an_ulp_of_the_exact_total();
+  rounded_once_to_nearest();
   nan_and_infinity_as_ieee();
   many_terms_carry();
   return check::result();

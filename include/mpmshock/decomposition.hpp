@@ -6,7 +6,7 @@
 // top strip's points also touch (halo.hpp). Slabs are chosen so that the ranks' work is even: each
 // strip weighs its computed points (kComputedWeight each) and the points nothing has reached yet
 // (1 each: they are only moved), and the slabs are re-chosen as the material moves and compresses
-// (Simulation::step, every 20 steps when that evens the work by more than 2 %). Results do not depend on the slabs: every sum of the step is one process's
+// (Simulation::step, every 20 steps when that evens the work by 5 % or more). Results do not depend on the slabs: every sum of the step is one process's
 // (halo.hpp, exact_sum.hpp), so the slabs are free to follow the load.
 #pragma once
 
@@ -61,6 +61,10 @@ void unpack_points(Particles<D>& p, const std::vector<char>& bytes);
 // Keeps the points whose flag is set, in their order.
 template <int D>
 void keep_points(Particles<D>& p, const std::vector<char>& keep);
+// The points (in id order) that stay (their flag set) and those that arrive (each batch made by
+// pack_points from points in id order), merged into id order in one pass over each field.
+template <int D>
+void merge_points(Particles<D>& p, const std::vector<char>& keep, const std::vector<std::vector<char>>& arrivals);
 // Puts the points in id order (a no-op for points already in it).
 template <int D>
 void sort_by_id(Particles<D>& p);

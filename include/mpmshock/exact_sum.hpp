@@ -6,10 +6,11 @@
 // 2^(32k - 1074)); adding a double adds its 53-bit significand, shifted, into three digits, with no
 // rounding. The digits absorb 2^30 additions before carries must be passed up, so normalising is rare.
 // Two sums merge by adding digits (integers: exact and commutative), which is also how MPI combines
-// them (comm.hpp). value() rounds the exact total once, from its canonical digits, so the result
-// depends on the terms alone, never on their order; it is within one unit in the last place of the
-// exact sum. NaN and infinities are counted apart and give what IEEE addition would: NaN if any
-// term is NaN or both infinities occur, else the infinity.
+// them (comm.hpp). value() rounds the exact total once, to nearest (ties to even), from its
+// canonical digits, so the result depends on the terms alone, never on their order (below 2^-1022
+// a second rounding to the subnormal grid may follow; a total of zero is +0). NaN and infinities are
+// counted apart and give what IEEE addition would: NaN if any term is NaN or both infinities occur,
+// else the infinity.
 #pragma once
 
 #include <array>
@@ -81,12 +82,27 @@ class ExactSum {
     int top = kDigits - 1;
     while (top >= 0 && c.words_[top] == 0) --top;
     if (top < 0) return 0.0;
-    // Three digits hold 65 to 96 significant bits: enough for one rounding to 53 that depends on the
-    // canonical digits alone.
-    double total = 0.0;
-    for (int k = top; k >= 0 && k > top - 3; --k)
-      total += std::ldexp(static_cast<double>(c.words_[k]), 32 * k - 1074);
-    return sign * total;
+    // The 64 bits from the leading one down, and whether any bit below them is set.
+    auto digit = [&](int k) { return k >= 0 ? static_cast<std::uint64_t>(c.words_[k]) : std::uint64_t{0}; };
+    int lead = 31;
+    while (!((digit(top) >> lead) & 1u)) --lead;
+    const int shift = 31 - lead;  // puts the leading one at bit 63
+    const std::uint64_t upper = (digit(top) << 32) | digit(top - 1), lower = digit(top - 2);
+    std::uint64_t window = upper << shift;
+    bool sticky = false;
+    if (shift > 0) {
+      window |= lower >> (32 - shift);
+      sticky = (lower & ((std::uint64_t{1} << (32 - shift)) - 1)) != 0;
+    } else {
+      sticky = lower != 0;
+    }
+    for (int k = top - 3; k >= 0 && !sticky; --k) sticky = c.words_[k] != 0;
+    // Round the 64 bits to 53, to nearest, ties to even.
+    std::uint64_t kept = window >> 11;
+    const std::uint64_t rest = window & 0x7ff, half = 0x400;
+    if (rest > half || (rest == half && (sticky || (kept & 1u)))) ++kept;
+    const int position = 32 * top + lead;  // of the leading one, in units of 2^-1074
+    return sign * std::ldexp(static_cast<double>(kept), position - 52 - 1074);
   }
 
   // The state as integers, for a sum across processes (add word by word, then from_words).

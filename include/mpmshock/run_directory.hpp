@@ -64,9 +64,14 @@ void write_text_atomically(const fs::path& path, const std::string& text);
 // voids.csv: body, x, y, radius per void (body, x, y, z, radius per sphere in 3D).
 void write_voids(const fs::path& path, const BodySummary& flyer, const BodySummary& target, int dimension);
 
+// An error of the disk that every rank knows of (on_root): each ends with exit 4, none aborts the others.
+struct AgreedIoError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // Runs f on rank 0 alone (the run directory is rank 0's to write); an error it throws there is thrown
-// on every rank, SceneError as SceneError and any other as std::runtime_error, so that no rank waits
-// for one that gave up.
+// on every rank, SceneError as SceneError and any other as AgreedIoError, so that no rank waits for
+// one that gave up.
 template <class F>
 void on_root(const Comm& comm, F&& f) {
   std::string failure;  // "S" or "R", then the message
@@ -82,7 +87,7 @@ void on_root(const Comm& comm, F&& f) {
   comm.broadcast(failure);
   if (failure.empty()) return;
   if (failure[0] == 'S') throw SceneError(failure.substr(1));
-  throw std::runtime_error(failure.substr(1));
+  throw AgreedIoError(failure.substr(1));
 }
 
 // The rows of a CSV (the header is not a row) whose time, the first column, is after t.

@@ -135,7 +135,8 @@ class Simulation {
   StepStatus agree(const StepStatus& mine) const;  // the same status on every rank: the lowest id's
   // The step's maximum signal and work mismatch over every rank, and its failure (a bad state before
   // a point off the grid, each of the lowest id).
-  StepStatus agree_on(StressUpdateResult& update, std::size_t left);
+  StepStatus agree_on(StressUpdateResult& update, std::size_t left, const StepStatus& effect);
+  bool bins_within_slab() const;  // MPI: the step's points touch only this rank's rows
   int first_strip_end_needed() const;
   StepStatus with_id(StepStatus s) const;  // an effect's storage index as the point's id
   void describe_point(std::ostream& out, StepStatus::Code code, std::size_t p, std::size_t id) const;  // rank 0's slab must reach this strip (symmetry_plane.hpp)
@@ -145,8 +146,8 @@ class Simulation {
   Halo<D> halo_;
   std::size_t total_points_ = 0;
   std::int64_t last_balance_step_ = 0;
-  std::chrono::steady_clock::time_point balance_clock_ = std::chrono::steady_clock::now();
-  double balance_mpi_seconds_ = 0.0;  // the rank's time in MPI at the last balance
+  bool balanced_once_ = false;
+  double busy_seconds_ = 0.0;  // the steps' time since the last balance, outside MPI calls
   double imbalance_ = 1.0;           // by the last balance's measured work
   std::vector<ExactSum> pending_mismatch_;  // MPI: this rank's work mismatch of the steps not settled
   int stop_signal_ = 0;
