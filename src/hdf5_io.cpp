@@ -91,8 +91,10 @@ void write_doubles_attribute(hid_t loc, const char* name, const std::vector<doub
   write_attribute(loc, name, H5T_NATIVE_DOUBLE, values.data(), values.size());
 }
 
-void write_dataset(hid_t group, const char* name, hid_t mem_type, const void* data, const std::vector<hsize_t>& dims,
-                   const char* units, const char* description, Compression compression) {
+namespace {
+
+Handle create_dataset(hid_t group, const char* name, hid_t mem_type, const std::vector<hsize_t>& dims,
+                      Compression compression) {
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
                std::string("make the dataspace of ") + name);
   Handle create(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "make dataset properties");
@@ -104,12 +106,37 @@ void write_dataset(hid_t group, const char* name, hid_t mem_type, const void* da
     check(H5Pset_shuffle(create.get()), "set the shuffle filter");
     check(H5Pset_deflate(create.get(), static_cast<unsigned>(compression.level)), "set the deflate filter");
   }
-  Handle set(H5Dcreate2(group, name, mem_type, space.get(), H5P_DEFAULT, create.get(), H5P_DEFAULT), H5Dclose,
-             std::string("create dataset ") + name);
-  if (dims[0] > 0)
-    check(H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), std::string("write ") + name);
-  write_string_attribute(set.get(), "units", units);
-  write_string_attribute(set.get(), "description", description);
+  return Handle(H5Dcreate2(group, name, mem_type, space.get(), H5P_DEFAULT, create.get(), H5P_DEFAULT), H5Dclose,
+                std::string("create dataset ") + name);
+}
+
+}  // namespace
+
+RowWriter::RowWriter(hid_t group, const char* name, hid_t mem_type, std::vector<hsize_t> dims, const char* units,
+                     const char* description, Compression compression)
+    : set_(create_dataset(group, name, mem_type, dims, compression)), type_(mem_type), dims_(std::move(dims)),
+      name_(name) {
+  write_string_attribute(set_.get(), "units", units);
+  write_string_attribute(set_.get(), "description", description);
+}
+
+void RowWriter::write(hsize_t first, hsize_t rows, const void* data) {
+  if (rows == 0) return;
+  std::vector<hsize_t> start(dims_.size(), 0), count = dims_;
+  start[0] = first;
+  count[0] = rows;
+  Handle file_space(H5Dget_space(set_.get()), H5Sclose, "read the shape of " + name_);
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "select rows of " + name_);
+  Handle memory(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose,
+                "make the memory space of " + name_);
+  check(H5Dwrite(set_.get(), type_, memory.get(), file_space.get(), H5P_DEFAULT, data), "write " + name_);
+}
+
+void write_dataset(hid_t group, const char* name, hid_t mem_type, const void* data, const std::vector<hsize_t>& dims,
+                   const char* units, const char* description, Compression compression) {
+  RowWriter writer(group, name, mem_type, dims, units, description, compression);
+  writer.write(0, dims[0], data);
 }
 
 std::string read_string_attribute(hid_t loc, const char* name) {

@@ -85,12 +85,8 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
   }
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   options.mirror = &mirror_;
-  if (comm_.parallel()) {
-    const Particles<D> all = sim.all_particles();  // at rank 0
-    if (writes_) write_snapshot((dir_ / name).string(), all, thermal, run, options);
-  } else {
-    write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);
-  }
+  options.comm = &comm_;
+  write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);  // every rank: its points
   if (!writes_) return;
   const GridGeometry<D>& g = sim.whole_grid();
   const std::size_t points = sim.total_points() + (mirror_.on() ? mirror_.flyer_points() : 0);

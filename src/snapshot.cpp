@@ -10,11 +10,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <algorithm>
 #include <filesystem>
+#include <functional>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "mpmshock/decomposition.hpp"
 #include "mpmshock/hdf5_io.hpp"
+#include "mpmshock/run_directory.hpp"
 #include "mpmshock/signals.hpp"
 #include "mpmshock/version.hpp"
 
@@ -40,124 +45,116 @@ void unflatten(const std::vector<double>& flat_values, std::vector<T>& v) {
 template <int D>
 constexpr hsize_t kDeviatorComponents = D == 2 ? 3 : 5;
 
-// The rows a snapshot holds: the simulated points, or with a mirror image the whole impact, the
-// mirrored flyer's rows made from the target's points one field at a time (a whole copy of the
-// points would hold half as much memory again as the run).
-template <int D>
-struct Rows {
-  const Particles<D>& p;
-  const MirrorImage<D>& mirror;
+// A snapshot is written in chunks of kChunkRows rows (a multiple of the 64 Ki-row HDF5 chunks of a
+// compressed dataset): each chunk is the whole impact's points of those rows, the mirrored flyer's
+// made from the target's, gathered from the ranks that hold them (snapshot_rows), and every dataset
+// gets its rows of it. No rank, rank 0 included, holds more than a chunk beyond its own points.
+constexpr std::size_t kChunkRows = 4 * 65536;
 
-  std::size_t size() const { return mirror.on() ? mirror.flyer_points() + p.size() : p.size(); }
-  // A field over the rows, `reflect` applied to the mirrored ones.
-  template <class T, class Reflect>
-  std::vector<T> field(const std::vector<T>& values, Reflect&& reflect) const {
-    std::vector<T> out(size());
-    for (std::size_t k = 0; k < out.size(); ++k) {
-      const auto [q, mirrored] = mirror.source_of(static_cast<std::uint32_t>(k));
-      out[k] = mirrored ? reflect(values[q]) : values[q];
-    }
-    return out;
-  }
-  // A field the reflection leaves alone.
-  template <class T>
-  std::vector<T> field(const std::vector<T>& values) const {
-    return field(values, [](const T& v) { return v; });
-  }
-  // f(simulated point, mirrored) over the rows.
-  template <class F>
-  void each(F&& f) const {
-    for (std::size_t k = 0; k < size(); ++k) {
-      const auto [q, mirrored] = mirror.source_of(static_cast<std::uint32_t>(k));
-      f(k, q, mirrored);
-    }
-  }
+// One dataset of the snapshot: what a row of it holds, and how a chunk's points fill its rows.
+template <int D>
+struct Column {
+  hid_t group;
+  std::string name;
+  hid_t type;
+  std::vector<hsize_t> row_shape;  // the dimensions after the first
+  std::string units, description;
+  Compression compression;
+  std::size_t row_bytes;
+  std::function<void(const Particles<D>& rows, char* out)> fill;
 };
 
 template <int D>
-void write_particles(hid_t file, const Rows<D>& rows, const HugoniotTemperature* thermal, int level,
-                     const MeltCurve& melt) {
-  const Particles<D>& p = rows.p;
-  Handle group(H5Gcreate2(file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /particles");
-  const hid_t g = group.get();
-  const std::size_t n = rows.size();
-  const hsize_t N = n, d = D;
+using Columns = std::vector<Column<D>>;
+
+// A column of doubles, `per_row` of them from each point by `value(q, out)`.
+template <int D, class F>
+Column<D> doubles(hid_t g, const char* name, std::vector<hsize_t> shape, const char* units, const std::string& what,
+                  Compression c, F value) {
+  std::size_t per_row = 1;
+  for (hsize_t d : shape) per_row *= d;
+  return {g, name, H5T_NATIVE_DOUBLE, std::move(shape), units, what, c, per_row * sizeof(double),
+          [value, per_row](const Particles<D>& rows, char* out) {
+            auto* o = reinterpret_cast<double*>(out);
+            for (std::size_t q = 0; q < rows.size(); ++q) value(rows, q, o + q * per_row);
+          }};
+}
+
+// A per-point field of small vectors or matrices, copied as its doubles.
+template <int D, class T>
+Column<D> field(hid_t g, const char* name, std::vector<hsize_t> shape, const char* units, const std::string& what,
+                Compression c, std::vector<T> Particles<D>::*member) {
+  static_assert(sizeof(T) % sizeof(double) == 0, "a field of doubles");
+  return doubles<D>(g, name, std::move(shape), units, what, c, [member](const Particles<D>& p, std::size_t q, double* o) {
+    std::memcpy(o, &(p.*member)[q], sizeof(T));
+  });
+}
+
+template <int D>
+Columns<D> particle_columns(hid_t g, const Particles<D>& layout, const HugoniotTemperature* thermal, int level,
+                            const MeltCurve& melt) {
   const Compression always{level > 0 ? level : 1};  // fields that compress >100x: worth it at any setting
   const Compression chosen{level};
-  auto doubles = [&](const char* name, const double* v, std::vector<hsize_t> dims, const char* units,
-                     const char* what, Compression c) {
-    h5::write_dataset(g, name, H5T_NATIVE_DOUBLE, v, dims, units, what, c);
-  };
-  const char* per_depth = D == 2 ? " per metre of depth (plane strain)" : "";
-
-  {  // ids number the rows (the simulated points' are their indices); the mirrored rows are the flyer
-    std::vector<std::uint32_t> id(n);
-    std::vector<Body> body(n);
-    rows.each([&](std::size_t k, std::size_t q, bool mirrored) {
-      id[k] = static_cast<std::uint32_t>(k);
-      body[k] = mirrored ? Body::flyer : p.body[q];
-    });
-    h5::write_dataset(g, "id", H5T_NATIVE_UINT32, id.data(), {N}, "", "stable material-point number", always);
-    h5::write_dataset(g, "body", H5T_NATIVE_UINT8, body.data(), {N}, "", "0 flyer, 1 target", always);
-  }
-  const auto reflect_vec = [](const Vec<D>& u) { return reflected(u); };
-  const auto reflect_mat = [](const Mat<D>& a) { return reflected(a); };
-  doubles("position", flat(rows.field(p.x, reflect_vec)), {N, d}, "m", D == 2 ? "x, y" : "x, y, z", chosen);
-  doubles("velocity", flat(rows.field(p.v, reflect_vec)), {N, d}, "m/s", D == 2 ? "v_x, v_y" : "v_x, v_y, v_z", chosen);
-  doubles("mass", rows.field(p.m).data(), {N}, D == 2 ? "kg/m" : "kg", (std::string("mass") + per_depth).c_str(),
-          always);
-
-  std::vector<double> scalar(n);
-  auto per_point = [&](auto&& value) {  // a quantity the reflection leaves alone, over the rows
-    rows.each([&](std::size_t k, std::size_t q, bool) { scalar[k] = value(q); });
-    return scalar.data();
-  };
-  doubles("volume", per_point([&](std::size_t q) { return p.volume(q); }), {N}, D == 2 ? "m2" : "m3",
-          (std::string("volume") + per_depth).c_str(), chosen);
-  doubles("density", per_point([&](std::size_t q) { return p.density(q); }), {N}, "kg/m3",
-          "density of the material point", chosen);
-  doubles("pressure", rows.field(p.P).data(), {N}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)",
-          chosen);
-  doubles("viscous_pressure", rows.field(p.q).data(), {N}, "Pa", "artificial viscous pressure q", chosen);
-  doubles("temperature", per_point([&](std::size_t q) { return thermal ? thermal->of_point(p, q) : std::nan(""); }),
-          {N}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen);
+  const hsize_t d = D;
+  const std::string per_depth = D == 2 ? " per metre of depth (plane strain)" : "";
+  Columns<D> c;
+  c.push_back({g, "id", H5T_NATIVE_UINT32, {}, "", "stable material-point number", always, sizeof(std::uint32_t),
+               [](const Particles<D>& p, char* out) { std::memcpy(out, p.id.data(), p.size() * sizeof(std::uint32_t)); }});
+  c.push_back({g, "body", H5T_NATIVE_UINT8, {}, "", "0 flyer, 1 target", always, sizeof(std::uint8_t),
+               [](const Particles<D>& p, char* out) { std::memcpy(out, p.body.data(), p.size()); }});
+  c.push_back(field<D>(g, "position", {d}, "m", D == 2 ? "x, y" : "x, y, z", chosen, &Particles<D>::x));
+  c.push_back(field<D>(g, "velocity", {d}, "m/s", D == 2 ? "v_x, v_y" : "v_x, v_y, v_z", chosen, &Particles<D>::v));
+  c.push_back(field<D>(g, "mass", {}, D == 2 ? "kg/m" : "kg", "mass" + per_depth, always, &Particles<D>::m));
+  c.push_back(doubles<D>(g, "volume", {}, D == 2 ? "m2" : "m3", "volume" + per_depth, chosen,
+                         [](const Particles<D>& p, std::size_t q, double* o) { *o = p.volume(q); }));
+  c.push_back(doubles<D>(g, "density", {}, "kg/m3", "density of the material point", chosen,
+                         [](const Particles<D>& p, std::size_t q, double* o) { *o = p.density(q); }));
+  c.push_back(field<D>(g, "pressure", {}, "Pa", "Mie-Grueneisen pressure (without artificial viscosity)", chosen,
+                       &Particles<D>::P));
+  c.push_back(field<D>(g, "viscous_pressure", {}, "Pa", "artificial viscous pressure q", chosen, &Particles<D>::q));
+  c.push_back(doubles<D>(g, "temperature", {}, "K", "T = T_H(V) + (E - E_H(V)) / c_v; NaN when thermal = off", chosen,
+                         [thermal](const Particles<D>& p, std::size_t q, double* o) {
+                           *o = thermal ? thermal->of_point(p, q) : std::nan("");
+                         }));
   if (thermal && thermal->reports_paper_temperature())
-    doubles("paper_temperature", per_point([&](std::size_t q) { return thermal->paper_of_point(p, q); }), {N}, "K",
-            "the paper model's T = T_H(V) + W_p / c_v, W_p the plastic work turned to heat (paper_temperature = on)",
-            chosen);
-  doubles("internal_energy", rows.field(p.E).data(), {N}, "J/kg", "specific internal energy, 0 at the reference state",
-          chosen);
-
-  std::vector<double> tensor(9 * n, 0.0);
-  rows.each([&](std::size_t k, std::size_t q, bool mirrored) {
-    const double pq = p.P[q] + p.q[q];
-    Deviator<D> s = p.has_strength() ? p.s[q] : Deviator<D>{};
-    if (mirrored) s = reflected(s);
-    double* t = &tensor[9 * k];
-    t[0] = s.xx - pq;
-    t[1] = t[3] = s.xy;
-    t[4] = s.yy - pq;
-    t[8] = s.zz() - pq;
-    if constexpr (D == 3) {
-      t[5] = t[7] = s.yz();
-      t[2] = t[6] = s.zx();
-    }
-  });
-  doubles("stress", tensor.data(), {N, 3, 3}, "Pa",
-          D == 2 ? "Cauchy stress s - (P + q) I, plane strain (zz non-zero)" : "Cauchy stress s - (P + q) I", chosen);
-  doubles("plastic_strain", per_point([&](std::size_t q) { return p.has_strength() ? p.eps_p[q] : 0.0; }), {N}, "",
-          "effective plastic strain", chosen);
-  doubles("melted", per_point([&](std::size_t q) {
-            return thermal && thermal->of_point(p, q) >= melt.at(p.material_J(q)) ? 1.0 : 0.0;
-          }),
-          {N}, "", "1 where T is at or above the Lindemann melt temperature T_m(J), else 0 (0 with thermal = off)",
-          chosen);
-  doubles("damage", per_point([&](std::size_t q) { return p.has_failure() ? p.damage[q] : 0.0; }), {N}, "",
-          "0 intact, rising from 0 while it opens in tension, 1 separated (spall = on; 0 without)", chosen);
-  doubles("deformation_gradient", flat(rows.field(p.F, reflect_mat)), {N, d, d}, "",
-          D == 2 ? "F, in-plane (F_zz = 1), F[i][j] = dx_i/dX_j" : "F[i][j] = dx_i/dX_j", chosen);
-  doubles("velocity_gradient", flat(rows.field(p.L, reflect_mat)), {N, d, d}, "1/s", "L = grad v of the last step, L[i][j] = dv_i/dx_j",
-          chosen);
+    c.push_back(doubles<D>(g, "paper_temperature", {}, "K",
+                           "the paper model's T = T_H(V) + W_p / c_v, W_p the plastic work turned to heat "
+                           "(paper_temperature = on)",
+                           chosen, [thermal](const Particles<D>& p, std::size_t q, double* o) {
+                             *o = thermal->paper_of_point(p, q);
+                           }));
+  c.push_back(field<D>(g, "internal_energy", {}, "J/kg", "specific internal energy, 0 at the reference state", chosen,
+                       &Particles<D>::E));
+  c.push_back(doubles<D>(g, "stress", {3, 3}, "Pa",
+                         D == 2 ? "Cauchy stress s - (P + q) I, plane strain (zz non-zero)" : "Cauchy stress s - (P + q) I",
+                         chosen, [](const Particles<D>& p, std::size_t q, double* t) {
+                           const double pq = p.P[q] + p.q[q];
+                           const Deviator<D> s = p.has_strength() ? p.s[q] : Deviator<D>{};
+                           for (int k = 0; k < 9; ++k) t[k] = 0.0;
+                           t[0] = s.xx - pq;
+                           t[1] = t[3] = s.xy;
+                           t[4] = s.yy - pq;
+                           t[8] = s.zz() - pq;
+                           if constexpr (D == 3) {
+                             t[5] = t[7] = s.yz();
+                             t[2] = t[6] = s.zx();
+                           }
+                         }));
+  c.push_back(doubles<D>(g, "plastic_strain", {}, "", "effective plastic strain", chosen,
+                         [](const Particles<D>& p, std::size_t q, double* o) { *o = p.has_strength() ? p.eps_p[q] : 0.0; }));
+  c.push_back(doubles<D>(g, "melted", {}, "", "1 where T is at or above the Lindemann melt temperature T_m(J), else 0 (0 with thermal = off)",
+                         chosen, [thermal, melt](const Particles<D>& p, std::size_t q, double* o) {
+                           *o = thermal && thermal->of_point(p, q) >= melt.at(p.material_J(q)) ? 1.0 : 0.0;
+                         }));
+  c.push_back(doubles<D>(g, "damage", {}, "", "0 intact, rising from 0 while it opens in tension, 1 separated (spall = on; 0 without)",
+                         chosen, [](const Particles<D>& p, std::size_t q, double* o) { *o = p.has_failure() ? p.damage[q] : 0.0; }));
+  c.push_back(field<D>(g, "deformation_gradient", {d, d}, "",
+                       D == 2 ? "F, in-plane (F_zz = 1), F[i][j] = dx_i/dX_j" : "F[i][j] = dx_i/dX_j", chosen,
+                       &Particles<D>::F));
+  c.push_back(field<D>(g, "velocity_gradient", {d, d}, "1/s", "L = grad v of the last step, L[i][j] = dv_i/dx_j", chosen,
+                       &Particles<D>::L));
+  (void)layout;
+  return c;
 }
 
 void write_bodies(hid_t g, const RunState& run, int dimension) {
@@ -178,15 +175,13 @@ void write_bodies(hid_t g, const RunState& run, int dimension) {
   }
 }
 
+// /restart's attributes, and the columns of the state /particles does not hold.
 template <int D>
-void write_restart(hid_t file, const Rows<D>& rows, const RunState& run) {
-  const Particles<D>& p = rows.p;
-  Handle group(H5Gcreate2(file, "restart", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /restart");
-  const hid_t g = group.get();
-  const hsize_t N = rows.size(), C = kDeviatorComponents<D>;
+Columns<D> restart_columns(hid_t g, const Particles<D>& layout, const RunState& run) {
+  const hsize_t C = kDeviatorComponents<D>;
   h5::write_double_attribute(g, "max_signal", run.clock.max_signal);
   h5::write_double_attribute(g, "work_mismatch", run.clock.work_mismatch);
-  if (run.clock.unreached_tail != Clock::kNoneSaved) {  // indices of the simulated points (unreached.hpp)
+  if (run.clock.unreached_tail != Clock::kNoneSaved) {  // ids of the simulated points (unreached.hpp)
     h5::write_int_attribute(g, "unreached_head", static_cast<std::int64_t>(run.clock.unreached_head));
     h5::write_int_attribute(g, "unreached_tail", static_cast<std::int64_t>(run.clock.unreached_tail));
   }
@@ -200,25 +195,25 @@ void write_restart(hid_t file, const Rows<D>& rows, const RunState& run) {
   h5::write_string_attribute(g, "random_state",
                              "none: random numbers are drawn only at set-up (the void layout, stored here)");
   write_bodies(g, run, D);
-  const auto reflect_deviator = [](const Deviator<D>& s) { return reflected(s); };
-  h5::write_dataset(g, "volume0", H5T_NATIVE_DOUBLE, rows.field(p.V0).data(), {N}, D == 2 ? "m2" : "m3", "reference volume V0",
-                    {1});
-  const char* components = D == 2 ? "xx, yy, xy (zz = -(xx + yy))" : "xx, yy, xy, yz, zx (zz = -(xx + yy))";
-  if (p.has_strength())
-    h5::write_dataset(g, "deviatoric_stress", H5T_NATIVE_DOUBLE, flat(rows.field(p.s, reflect_deviator)), {N, C}, "Pa",
-                      (std::string("deviatoric stress s: ") + components).c_str());
-  if (p.stores_cold_work())
-    h5::write_dataset(g, "stored_energy", H5T_NATIVE_DOUBLE, rows.field(p.E_stored).data(), {N}, "J/kg",
-                      "plastic work stored as cold work, not heat (taylor_quinney < 1)");
-  if (p.tracks_plastic_heat())
-    h5::write_dataset(g, "plastic_heat", H5T_NATIVE_DOUBLE, rows.field(p.plastic_heat).data(), {N}, "J/kg",
-                      "plastic work turned to heat so far (temperature_model = paper)");
-  if (p.has_failure())
-    h5::write_dataset(g, "failure_J", H5T_NATIVE_DOUBLE, rows.field(p.failure_J).data(), {N}, "",
-                      "0 while intact; the volume ratio J at which the point began to open in tension");
-  if (p.has_back_stress())
-    h5::write_dataset(g, "back_stress", H5T_NATIVE_DOUBLE, flat(rows.field(p.alpha, reflect_deviator)), {N, C}, "Pa",
-                      (std::string("back stress alpha (kinematic hardening): ") + components).c_str());
+  const std::string components = D == 2 ? "xx, yy, xy (zz = -(xx + yy))" : "xx, yy, xy, yz, zx (zz = -(xx + yy))";
+  Columns<D> c;
+  c.push_back(field<D>(g, "volume0", {}, D == 2 ? "m2" : "m3", "reference volume V0", {1}, &Particles<D>::V0));
+  if (layout.has_strength())
+    c.push_back(field<D>(g, "deviatoric_stress", {C}, "Pa", "deviatoric stress s: " + components, {},
+                         &Particles<D>::s));
+  if (layout.stores_cold_work())
+    c.push_back(field<D>(g, "stored_energy", {}, "J/kg", "plastic work stored as cold work, not heat (taylor_quinney < 1)",
+                         {}, &Particles<D>::E_stored));
+  if (layout.tracks_plastic_heat())
+    c.push_back(field<D>(g, "plastic_heat", {}, "J/kg", "plastic work turned to heat so far (temperature_model = paper)",
+                         {}, &Particles<D>::plastic_heat));
+  if (layout.has_failure())
+    c.push_back(field<D>(g, "failure_J", {}, "", "0 while intact; the volume ratio J at which the point began to open in tension",
+                         {}, &Particles<D>::failure_J));
+  if (layout.has_back_stress())
+    c.push_back(field<D>(g, "back_stress", {C}, "Pa", "back stress alpha (kinematic hardening): " + components, {},
+                         &Particles<D>::alpha));
+  return c;
 }
 
 template <int D>
@@ -401,45 +396,141 @@ void probe_in_child(const std::string& path, F&& read) {
 
 }  // namespace
 
+namespace {
+
+// Rows [first, end) of the whole impact as points in row order (ids the rows', the mirrored flyer's
+// reflected from the target points they mirror), at rank 0; every rank gives the points it holds.
+template <int D>
+Particles<D> snapshot_rows(const Particles<D>& p, const MirrorImage<D>& mirror, std::size_t first, std::size_t end,
+                           const Comm& comm) {
+  std::vector<std::uint32_t> needed;  // the simulated points these rows show, by id
+  needed.reserve(end - first);
+  for (std::size_t k = first; k < end; ++k) needed.push_back(mirror.source_of(static_cast<std::uint32_t>(k)).point);
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  Particles<D> have;  // those points, in id order
+  if (comm.parallel()) {
+    std::vector<std::size_t> mine;
+    for (std::uint32_t id : needed)
+      if (const std::size_t q = index_of_id(p, id); q < p.size()) mine.push_back(q);
+    have.enable_fields_of(p);
+    for (const std::vector<char>& part : comm.gather(pack_points(p, mine))) unpack_points(have, part);
+    sort_by_id(have);
+    if (!comm.root()) return {};
+  }
+  const Particles<D>& from = comm.parallel() ? have : p;  // one rank: a point's id is its index
+  Particles<D> rows;
+  rows.enable_fields_of(p);
+  rows.reserve(end - first);
+  for (std::size_t k = first; k < end; ++k) {
+    const auto [id, mirrored] = mirror.source_of(static_cast<std::uint32_t>(k));
+    rows.append_copy(from, comm.parallel() ? index_of_id(from, id) : id);
+    rows.id.back() = static_cast<std::uint32_t>(k);
+    if (!mirrored) continue;
+    reflect_point(rows, rows.size() - 1);
+    rows.body.back() = Body::flyer;
+  }
+  return rows;
+}
+
+template <int D>
+void write_header(hid_t f, const RunState& run, std::size_t rows) {
+  h5::write_double_attribute(f, "time", run.clock.time);
+  h5::write_int_attribute(f, "step", run.clock.steps);
+  h5::write_int_attribute(f, "snapshot", run.schedule.snapshot_index);
+  h5::write_int_attribute(f, "particle_count", static_cast<std::int64_t>(rows));
+  h5::write_string_attribute(f, "units", D == 2 ? "SI: m, s, kg, Pa, K, J/kg; 2D plane strain, extensive "
+                                                  "quantities per metre of depth"
+                                                : "SI: m, s, kg, Pa, K, J/kg; 3D");
+  h5::write_int_attribute(f, "dimension", D);
+  h5::write_string_attribute(f, "scene", run.scene_text);
+  h5::write_string_attribute(f, "mpmshock_version", kVersion);
+  h5::write_int_attribute(f, "format_version", 2);
+}
+
+}  // namespace
+
 template <int D>
 void write_snapshot(const std::string& path, const Particles<D>& p, const HugoniotTemperature* thermal,
                     const RunState& run, const SnapshotOptions<D>& options) {
   h5::prepare_library();
+  const Comm& comm = options.comm ? *options.comm : Comm::world();
+  const MirrorImage<D> none;
+  const MirrorImage<D>& mirror = options.mirror ? *options.mirror : none;
+  std::int64_t simulated = static_cast<std::int64_t>(p.size());
+  comm.sum(&simulated, 1);
+  const std::size_t rows = (mirror.on() ? mirror.flyer_points() : 0) + static_cast<std::size_t>(simulated);
   const std::string tmp = path + ".tmp";
-  try {
-    {
-      Handle create(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "make file properties");
-      h5::check(H5Pset_userblock(create.get(), kUserBlock), "reserve the user block");
-      Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, create.get(), H5P_DEFAULT), H5Fclose, "create " + tmp);
-      const hid_t f = file.get();
-      h5::write_double_attribute(f, "time", run.clock.time);
-      h5::write_int_attribute(f, "step", run.clock.steps);
-      h5::write_int_attribute(f, "snapshot", run.schedule.snapshot_index);
-      const MirrorImage<D> none;
-      const Rows<D> rows{p, options.mirror ? *options.mirror : none};
-      h5::write_int_attribute(f, "particle_count", static_cast<std::int64_t>(rows.size()));
-      h5::write_string_attribute(f, "units", D == 2 ? "SI: m, s, kg, Pa, K, J/kg; 2D plane strain, extensive "
-                                                      "quantities per metre of depth"
-                                                    : "SI: m, s, kg, Pa, K, J/kg; 3D");
-      h5::write_int_attribute(f, "dimension", D);
-      h5::write_string_attribute(f, "scene", run.scene_text);
-      h5::write_string_attribute(f, "mpmshock_version", kVersion);
-      h5::write_int_attribute(f, "format_version", 2);
-      write_particles(f, rows, thermal, options.compression, options.melt);
-      write_restart(f, rows, run);
-      if (options.grid) write_grid(f, options);
-      h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flush " + tmp);
+  // Rank 0 writes; an error there stops its writing, not the chunks every rank serves, and is then
+  // every rank's (AgreedIoError in run_directory.hpp: each rank ends with exit 4).
+  std::string failure;
+  std::optional<Handle> file, particles, restart;
+  std::vector<h5::RowWriter> writers;
+  Columns<D> columns;
+  auto attempt = [&](auto&& what) {
+    if (!comm.root() || !failure.empty()) return;
+    try {
+      what();
+    } catch (const std::runtime_error& e) {
+      failure = e.what();
     }
+  };
+  attempt([&] {
+    Handle create(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "make file properties");
+    h5::check(H5Pset_userblock(create.get(), kUserBlock), "reserve the user block");
+    file.emplace(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, create.get(), H5P_DEFAULT), H5Fclose, "create " + tmp);
+    write_header<D>(file->get(), run, rows);
+    particles.emplace(H5Gcreate2(file->get(), "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                      "create /particles");
+    restart.emplace(H5Gcreate2(file->get(), "restart", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                    "create /restart");
+    columns = particle_columns(particles->get(), p, thermal, options.compression, options.melt);
+    for (Column<D>& c : restart_columns(restart->get(), p, run)) columns.push_back(std::move(c));
+    for (const Column<D>& c : columns) {
+      std::vector<hsize_t> dims{rows};
+      dims.insert(dims.end(), c.row_shape.begin(), c.row_shape.end());
+      writers.emplace_back(c.group, c.name.c_str(), c.type, dims, c.units.c_str(), c.description.c_str(),
+                           c.compression);
+    }
+  });
+  std::vector<char> buffer;
+  for (std::size_t first = 0; first < rows; first += kChunkRows) {
+    const std::size_t end = std::min(rows, first + kChunkRows);
+    const Particles<D> chunk = snapshot_rows(p, mirror, first, end, comm);
+    attempt([&] {
+      for (std::size_t k = 0; k < columns.size(); ++k) {
+        buffer.resize(chunk.size() * columns[k].row_bytes);
+        columns[k].fill(chunk, buffer.data());
+        writers[k].write(first, chunk.size(), buffer.data());
+      }
+    });
+  }
+  attempt([&] {
+    writers.clear();
+    if (options.grid) write_grid(file->get(), options);
+    h5::check(H5Fflush(file->get(), H5F_SCOPE_GLOBAL), "flush " + tmp);
+    restart.reset();
+    particles.reset();
+    file.reset();
     seal(tmp);
     std::error_code ec;
     std::filesystem::rename(tmp, path, ec);
     if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
-  } catch (const std::runtime_error& e) {
+  });
+  if (comm.root() && !failure.empty()) {
+    writers.clear();
+    restart.reset();
+    particles.reset();
+    file.reset();
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("writing snapshot " + path + ": " + e.what() +
-                             " (is the disk full or the directory not writable?); earlier snapshots are complete");
+    failure = "writing snapshot " + path + ": " + failure +
+              " (is the disk full or the directory not writable?); earlier snapshots are complete";
   }
+  comm.broadcast(failure);
+  if (failure.empty()) return;
+  if (comm.parallel()) throw AgreedIoError(failure);
+  throw std::runtime_error(failure);
 }
 
 namespace {

@@ -47,6 +47,21 @@ void write_doubles_attribute(hid_t loc, const char* name, const std::vector<doub
 void write_dataset(hid_t group, const char* name, hid_t mem_type, const void* data, const std::vector<hsize_t>& dims,
                    const char* units, const char* description, Compression compression = {});
 
+// The same dataset written a slab of rows at a time (a snapshot streams its points in chunks).
+class RowWriter {
+ public:
+  RowWriter(hid_t group, const char* name, hid_t mem_type, std::vector<hsize_t> dims, const char* units,
+            const char* description, Compression compression = {});
+  // Rows [first, first + rows) from `data`, rows first as in dims.
+  void write(hsize_t first, hsize_t rows, const void* data);
+
+ private:
+  Handle set_;
+  hid_t type_;
+  std::vector<hsize_t> dims_;
+  std::string name_;
+};
+
 std::string read_string_attribute(hid_t loc, const char* name);
 double read_double_attribute(hid_t loc, const char* name);
 std::int64_t read_int_attribute(hid_t loc, const char* name);

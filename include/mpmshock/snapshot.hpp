@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "mpmshock/comm.hpp"
 #include "mpmshock/diagnostics.hpp"
 #include "mpmshock/grid.hpp"
 #include "mpmshock/mirror_image.hpp"
@@ -36,11 +37,14 @@ struct SnapshotOptions {
   RowRange grid_rows;             // the grid's rows that hold this step's values
   MeltCurve melt;                 // for /particles/melted
   const MirrorImage<D>* mirror = nullptr;  // symmetry = on: write the whole impact (mirror_image.hpp)
+  const Comm* comm = nullptr;              // the ranks whose points these are (default: the world)
 };
 
 // Writes PATH.tmp and renames it over PATH when complete, so an interrupted write never leaves a
 // half-written PATH. With options.mirror on, the points are the target's and the file holds the
-// whole impact. Throws std::runtime_error naming the path.
+// whole impact. On MPI ranks every rank calls it with its own points, and rank 0 writes the file
+// in chunks of rows gathered from all (no rank holds every point). Throws std::runtime_error naming
+// the path (AgreedIoError, on every rank, with several ranks).
 template <int D>
 void write_snapshot(const std::string& path, const Particles<D>& p, const HugoniotTemperature* thermal,
                     const RunState& run, const SnapshotOptions<D>& options);
