@@ -5,20 +5,6 @@
 #include <string>
 
 namespace mpmshock {
-namespace {
-
-// The lattice cell of a point's initial position, with y reflected to the target's side.
-template <int D>
-std::size_t lattice_cell(const Vec<D>& x, double a, std::size_t columns, std::size_t rows) {
-  const auto i = static_cast<std::size_t>(std::lround(x[0] / a - 0.5));
-  const auto j = static_cast<std::size_t>(std::lround(std::abs(x[1]) / a - 0.5));
-  std::size_t k = 0;
-  if constexpr (D == 3) k = static_cast<std::size_t>(std::lround(x[2] / a - 0.5));
-  return (k * rows + j) * columns + i;
-}
-
-}  // namespace
-
 template <int D>
 void reflect_point(Particles<D>& pts, std::size_t p) {
   pts.x[p] = reflected(pts.x[p]);
@@ -30,47 +16,19 @@ void reflect_point(Particles<D>& pts, std::size_t p) {
 }
 
 template <int D>
-MirrorImage<D>::MirrorImage(const Particles<D>& whole) : on_(true) {
-  auto fail = [](const std::string& why) {
-    throw std::logic_error("symmetry = on: the flyer is not the target's mirror image: " + why);
-  };
-  const std::size_t flyer = mpmshock::flyer_points(whole);
-  const std::size_t target = whole.size() - flyer;
-  if (flyer != target)
-    fail(std::to_string(flyer) + " flyer points against " + std::to_string(target) + " target points");
-  if (target == 0) return;
-
-  // The target's points on their lattice, by cell.
-  const double a = std::pow(whole.V0[flyer], 1.0 / D);
-  std::size_t columns = 0, rows = 0, layers = 0;
-  for (std::size_t p = flyer; p < whole.size(); ++p) {
-    const Vec<D>& x = whole.x[p];
-    columns = std::max(columns, static_cast<std::size_t>(std::lround(x[0] / a - 0.5)) + 1);
-    rows = std::max(rows, static_cast<std::size_t>(std::lround(x[1] / a - 0.5)) + 1);
-    layers = D == 3 ? std::max(layers, static_cast<std::size_t>(std::lround(x[D - 1] / a - 0.5)) + 1) : 1;
-  }
-  constexpr std::uint32_t kNone = ~std::uint32_t{0};
-  std::vector<std::uint32_t> at(columns * rows * layers, kNone);
-  for (std::size_t p = flyer; p < whole.size(); ++p)
-    at[lattice_cell(whole.x[p], a, columns, rows)] = static_cast<std::uint32_t>(p - flyer);
-
-  mirror_of_.resize(flyer);
-  std::vector<bool> used(target, false);
-  for (std::size_t f = 0; f < flyer; ++f) {
-    const Vec<D>& x = whole.x[f];
-    const std::size_t cell = x[1] < 0.0 ? lattice_cell(x, a, columns, rows) : at.size();
-    const std::uint32_t t = cell < at.size() ? at[cell] : kNone;
-    const std::string which = "flyer point " + std::to_string(f);
-    if (t == kNone || used[t]) fail(which + " has no target point at its mirror position");
-    const std::size_t q = flyer + t;
-    const Vec<D> image = reflected(whole.x[q]), velocity = reflected(whole.v[q]);
-    for (int d = 0; d < D; ++d)
-      if (std::abs(x[d] - image[d]) > 1e-9 * a || whole.v[f][d] != velocity[d])
-        fail(which + " is not the mirror image of target point " + std::to_string(t) + " in position or velocity");
-    if (whole.m[f] != whole.m[q] || whole.V0[f] != whole.V0[q])
-      fail(which + " differs from target point " + std::to_string(t) + " in mass or volume");
-    used[t] = true;
-    mirror_of_[f] = t;
+MirrorImage<D>::MirrorImage(const std::vector<std::size_t>& flyer_rows, const std::vector<std::size_t>& target_rows)
+    : on_(true) {
+  const std::size_t rows = flyer_rows.size();
+  if (target_rows.size() != rows)
+    throw std::logic_error("symmetry = on: the flyer is not the target's mirror image: " + std::to_string(rows) +
+                           " flyer rows against " + std::to_string(target_rows.size()));
+  for (std::size_t j = 0; j < rows; ++j) {
+    if (flyer_rows[j] != target_rows[rows - 1 - j])
+      throw std::logic_error("symmetry = on: the flyer is not the target's mirror image: flyer row " +
+                             std::to_string(j) + " holds " + std::to_string(flyer_rows[j]) +
+                             " points, its mirror row " + std::to_string(target_rows[rows - 1 - j]));
+    flyer_start_.push_back(flyer_start_.back() + flyer_rows[j]);
+    target_start_.push_back(target_start_.back() + target_rows[j]);
   }
 }
 
@@ -78,7 +36,7 @@ template <int D>
 Particles<D> MirrorImage<D>::half(const Particles<D>& whole) const {
   Particles<D> out;
   out.enable_fields_of(whole);
-  const std::size_t flyer = mirror_of_.size();
+  const std::size_t flyer = flyer_points();
   out.reserve(whole.size() - flyer);
   for (std::size_t p = flyer; p < whole.size(); ++p) {
     out.append_copy(whole, p);
@@ -91,7 +49,7 @@ template <int D>
 Particles<D> MirrorImage<D>::whole(const Particles<D>& half) const {
   Particles<D> out;
   out.enable_fields_of(half);
-  const std::size_t n = mirror_of_.size() + half.size();
+  const std::size_t n = flyer_points() + half.size();
   out.reserve(n);
   for (std::size_t k = 0; k < n; ++k) {
     const auto [q, mirrored] = source_of(static_cast<std::uint32_t>(k));

@@ -84,15 +84,31 @@ void check_fits(const Scene& s) {
 
 namespace {
 
+// The surviving points of each lattice row of a body, bottom row first.
+std::vector<std::size_t> points_per_row(const Lattice& lat, const VoidLayout& layout) {
+  std::vector<std::size_t> out(static_cast<std::size_t>(lat.rows), 0);
+  for (int j = 0; j < lat.rows; ++j)
+    for (int k = 0; k < lat.layers; ++k)
+      for (int i = 0; i < lat.columns; ++i) out[static_cast<std::size_t>(j)] += !layout.removed[lat.index(i, j, k)];
+  return out;
+}
+
 // Adds the surviving lattice points of one body in lattice order (bottom row first, so that
-// storage follows y).
+// storage follows y), of the rows whose flag in `keep` (from `row`, one per lattice row) is set,
+// numbered from `id`.
 template <int D>
-void add_points(Particles<D>& p, const Lattice& lat, const VoidLayout& layout, double vy, double rho0, Body body) {
+void add_points(Particles<D>& p, const Lattice& lat, const VoidLayout& layout, double vy, double rho0, Body body,
+                const std::vector<std::size_t>& per_row, const std::vector<char>* keep, std::size_t row,
+                std::size_t id) {
   const double a = lat.spacing;
   const double V0 = D == 2 ? a * a : a * a * a;
   Vec<D> velocity{};
   velocity[1] = vy;
-  for (int j = 0; j < lat.rows; ++j)
+  for (int j = 0; j < lat.rows; ++j, ++row) {
+    if (keep && !(*keep)[row]) {
+      id += per_row[static_cast<std::size_t>(j)];
+      continue;
+    }
     for (int k = 0; k < lat.layers; ++k)
       for (int i = 0; i < lat.columns; ++i) {
         if (layout.removed[lat.index(i, j, k)]) continue;
@@ -101,7 +117,9 @@ void add_points(Particles<D>& p, const Lattice& lat, const VoidLayout& layout, d
         x[1] = lat.y0 + (j + 0.5) * a;
         if constexpr (D == 3) x[2] = (k + 0.5) * a;
         p.add(x, velocity, rho0 * V0, V0, body);
+        p.id.back() = static_cast<std::uint32_t>(id++);
       }
+  }
 }
 
 BodySummary summarize(const char* name, const Lattice& lat, const VoidLayout& layout) {
@@ -118,43 +136,69 @@ BodySummary summarize(const char* name, const Lattice& lat, const VoidLayout& la
 }  // namespace
 
 template <int D>
-InitialState<D> build_initial_state(const Scene& s) {
-  InitialState<D> st;
-  st.grid = build_grid_geometry<D>(s);
-
+InitialBuilder<D>::InitialBuilder(const Scene& s) : scene_(s) {
   const double a = s.particle_spacing();
-  Lattice target{0.0, 0.0, a, static_cast<int>(std::lround(s.width / a)), static_cast<int>(std::lround(s.target_height / a))};
-  if constexpr (D == 3) target.layers = static_cast<int>(std::lround(s.derived_depth() / a)), target.dimension = 3;
-  Lattice flyer = target;
-  flyer.y0 = -s.flyer_height;
-  flyer.rows = static_cast<int>(std::lround(s.flyer_height / a));
+  target_ = Lattice{0.0, 0.0, a, static_cast<int>(std::lround(s.width / a)), static_cast<int>(std::lround(s.target_height / a))};
+  if constexpr (D == 3) target_.layers = static_cast<int>(std::lround(s.derived_depth() / a)), target_.dimension = 3;
+  flyer_ = target_;
+  flyer_.y0 = -s.flyer_height;
+  flyer_.rows = static_cast<int>(std::lround(s.flyer_height / a));
 
   const VoidRequest request{s.porosity, s.void_radius, s.void_radius_spread, s.void_min_gap, s.void_overlap};
   std::mt19937_64 rng(static_cast<std::uint64_t>(s.seed));
-  VoidLayout target_voids, flyer_voids;
   try {
-    target_voids = seed_voids(target, request, rng);
-    flyer_voids = (s.flyer_mirror && s.porosity > 1.0) ? mirror_layout(target_voids, target)
-                                                       : seed_voids(flyer, request, rng);
+    target_voids_ = seed_voids(target_, request, rng);
+    flyer_voids_ = (s.flyer_mirror && s.porosity > 1.0) ? mirror_layout(target_voids_, target_)
+                                                        : seed_voids(flyer_, request, rng);
   } catch (const VoidSeedingError& e) {
     throw SceneError(s.where("porosity") + ": key 'porosity': " + e.what());
   }
+  flyer_rows_ = points_per_row(flyer_, flyer_voids_);
+  target_rows_ = points_per_row(target_, target_voids_);
+  // The rows simulated, in the order their points are made: with symmetry = on the target's alone.
+  if (s.symmetry != Symmetry::on)
+    for (int j = 0; j < flyer_.rows; ++j) {
+      row_y_.push_back(flyer_.y0 + (j + 0.5) * a);
+      row_points_.push_back(flyer_rows_[static_cast<std::size_t>(j)]);
+    }
+  for (int j = 0; j < target_.rows; ++j) {
+    row_y_.push_back(target_.y0 + (j + 0.5) * a);
+    row_points_.push_back(target_rows_[static_cast<std::size_t>(j)]);
+  }
+}
 
-  const std::size_t n = target.size() + flyer.size() - target_voids.removed_count - flyer_voids.removed_count;
+template <int D>
+InitialState<D> InitialBuilder<D>::build(const std::vector<char>* keep) const {
+  const Scene& s = scene_;
+  InitialState<D> st;
+  st.grid = build_grid_geometry<D>(s);
+  std::size_t n = 0;
+  for (std::size_t r = 0; r < row_points_.size(); ++r) n += !keep || (*keep)[r] ? row_points_[r] : 0;
   enable_fields(st.particles, s);
   st.particles.reserve(n);
-  add_points(st.particles, flyer, flyer_voids, +s.velocity, s.material.density, Body::flyer);
-  add_points(st.particles, target, target_voids, -s.velocity, s.material.density, Body::target);
-
-  st.target = summarize("target", target, target_voids);
-  st.flyer = summarize("flyer", flyer, flyer_voids);
-  if (s.symmetry == Symmetry::on) {
-    st.mirror = MirrorImage<D>(st.particles);
-    st.particles = st.mirror.half(st.particles);
+  const bool mirrored = s.symmetry == Symmetry::on;
+  std::size_t row = 0, id = 0;
+  if (!mirrored) {
+    add_points(st.particles, flyer_, flyer_voids_, +s.velocity, s.material.density, Body::flyer, flyer_rows_, keep,
+               row, id);
+    row += static_cast<std::size_t>(flyer_.rows);
+    for (std::size_t c : flyer_rows_) id += c;
   }
+  add_points(st.particles, target_, target_voids_, -s.velocity, s.material.density, Body::target, target_rows_, keep,
+             row, id);
+  st.target = summarize("target", target_, target_voids_);
+  st.flyer = summarize("flyer", flyer_, flyer_voids_);
+  if (mirrored) st.mirror = MirrorImage<D>(flyer_rows_, target_rows_);
   return st;
 }
 
+template <int D>
+InitialState<D> build_initial_state(const Scene& s) {
+  return InitialBuilder<D>(s).build();
+}
+
+template class InitialBuilder<2>;
+template class InitialBuilder<3>;
 template InitialState<2> build_initial_state<2>(const Scene&);
 template InitialState<3> build_initial_state<3>(const Scene&);
 template SizeEstimate estimate_size<2>(const Scene&);

@@ -11,6 +11,7 @@
 //   probes      a flyer point is read as the mirror of its target point
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -24,12 +25,13 @@ class MirrorImage {
  public:
   // Off: the points simulated are the whole.
   MirrorImage() = default;
-  // From the whole initial state (flyer points first, as set-up makes them): which target point each
-  // flyer point mirrors. Throws std::logic_error if a flyer point has no exact mirror image.
-  explicit MirrorImage(const Particles<D>& whole);
+  // From the points set-up makes in each lattice row (the flyer's bottom row first, then the
+  // target's, each row's points in the same order across it): flyer row j mirrors target row
+  // rows - 1 - j point for point. Throws std::logic_error if the rows do not mirror.
+  MirrorImage(const std::vector<std::size_t>& flyer_rows, const std::vector<std::size_t>& target_rows);
 
   bool on() const { return on_; }
-  std::size_t flyer_points() const { return mirror_of_.size(); }
+  std::size_t flyer_points() const { return on_ ? flyer_start_.back() : 0; }
 
   // The points to simulate: the target's, numbered from 0 in their whole-run order.
   Particles<D> half(const Particles<D>& whole) const;
@@ -51,13 +53,24 @@ class MirrorImage {
   };
   Source source_of(std::uint32_t whole_id) const {
     if (!on_) return {whole_id, false};
-    const std::size_t n = mirror_of_.size();
-    return whole_id < n ? Source{mirror_of_[whole_id], true} : Source{static_cast<std::uint32_t>(whole_id - n), false};
+    const std::size_t n = flyer_start_.back();
+    if (whole_id >= n) return {static_cast<std::uint32_t>(whole_id - n), false};
+    const std::size_t row = row_of(flyer_start_, whole_id), rows = flyer_start_.size() - 1;
+    return {static_cast<std::uint32_t>(target_start_[rows - 1 - row] + (whole_id - flyer_start_[row])), true};
+  }
+  // The whole run's id of the flyer point that mirrors simulated (target) point `id`.
+  std::uint32_t image_of(std::uint32_t id) const {
+    const std::size_t row = row_of(target_start_, id), rows = target_start_.size() - 1;
+    return static_cast<std::uint32_t>(flyer_start_[rows - 1 - row] + (id - target_start_[row]));
   }
 
  private:
   bool on_ = false;
-  std::vector<std::uint32_t> mirror_of_;  // per flyer point (its id), the simulated point it mirrors
+  // The first point of each lattice row (and one past the last row): flyer ids, target ids from 0.
+  std::vector<std::size_t> flyer_start_{0}, target_start_{0};
+  static std::size_t row_of(const std::vector<std::size_t>& start, std::size_t id) {
+    return static_cast<std::size_t>(std::upper_bound(start.begin(), start.end(), id) - start.begin()) - 1;
+  }
 };
 
 // Reflects point p in place about y = 0.
