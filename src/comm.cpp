@@ -70,6 +70,10 @@ bool Comm::init(int* argc, char*** argv) {
   Comm& w = world();
   MPI_Comm_rank(MPI_COMM_WORLD, &w.rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &w.size_);
+  MPI_Comm node;  // the ranks that share this machine's memory
+  check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node), "MPI_Comm_split_type");
+  MPI_Comm_size(node, &w.node_size_);
+  MPI_Comm_free(&node);
   return true;
 #else
   (void)argc;

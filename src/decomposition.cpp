@@ -8,7 +8,23 @@
 
 namespace mpmshock {
 
-Decomposition Decomposition::balanced(const std::vector<std::int64_t>& work, int ranks, int first_end_min) {
+namespace {
+
+std::vector<std::int64_t> prefix_sums(const std::vector<std::int64_t>& v) {
+  std::vector<std::int64_t> prefix(v.size() + 1, 0);
+  for (std::size_t s = 0; s < v.size(); ++s) prefix[s + 1] = prefix[s] + v[s];
+  return prefix;
+}
+
+// The most points a rank may hold: kMaxPointShare times the mean, rounded up.
+std::int64_t point_cap(std::int64_t total, int ranks) {
+  return (Decomposition::kMaxPointShare * total + ranks - 1) / ranks;
+}
+
+}  // namespace
+
+Decomposition Decomposition::balanced(const std::vector<std::int64_t>& work, int ranks, int first_end_min,
+                                      const std::vector<std::int64_t>& points) {
   const int strips = static_cast<int>(work.size());
   Decomposition d(strips);
   if (ranks <= 1) return d;
@@ -17,9 +33,12 @@ Decomposition Decomposition::balanced(const std::vector<std::int64_t>& work, int
     throw SceneError("the grid has " + std::to_string(strips) + " strips of " + std::to_string(4) +
                      " cell rows, too few for " + std::to_string(ranks) + " ranks (each needs " +
                      std::to_string(kMinStrips) + "); use fewer ranks or finer cells");
-  std::vector<std::int64_t> prefix(static_cast<std::size_t>(strips) + 1, 0);
-  for (int s = 0; s < strips; ++s) prefix[static_cast<std::size_t>(s) + 1] = prefix[static_cast<std::size_t>(s)] + work[static_cast<std::size_t>(s)];
+  const std::vector<std::int64_t> prefix = prefix_sums(work);
   const std::int64_t total = prefix.back();
+  const bool capped = points.size() == work.size();
+  const std::vector<std::int64_t> held = capped ? prefix_sums(points) : std::vector<std::int64_t>{};
+  const std::int64_t cap = capped ? point_cap(held.back(), ranks) : 0;
+  auto at = [](const std::vector<std::int64_t>& v, int k) { return v[static_cast<std::size_t>(k)]; };
   d.bounds_.assign(static_cast<std::size_t>(ranks) + 1, 0);
   d.bounds_.back() = strips;
   for (int r = 0; r + 1 < ranks; ++r) {
@@ -29,10 +48,23 @@ Decomposition Decomposition::balanced(const std::vector<std::int64_t>& work, int
     // The first strip boundary at which ranks 0..r hold (r + 1) / ranks of the work (integers: the
     // same on every rank).
     int end = lowest;
-    while (end < highest && prefix[static_cast<std::size_t>(end)] * ranks < (r + 1) * total) ++end;
+    while (end < highest && at(prefix, end) * ranks < (r + 1) * total) ++end;
+    if (capped) {
+      // No more than the cap here, and no more than the cap each for the ranks after this one.
+      while (end > lowest && at(held, end) - at(held, start) > cap) --end;
+      while (end < highest && at(held, strips) - at(held, end) > (ranks - 1 - r) * cap) ++end;
+    }
     d.bounds_[static_cast<std::size_t>(r) + 1] = end;
   }
   return d;
+}
+
+bool Decomposition::crowded(const std::vector<std::int64_t>& points) const {
+  const std::vector<std::int64_t> held = prefix_sums(points);
+  const std::int64_t cap = point_cap(held.back(), ranks());
+  for (int r = 0; r < ranks(); ++r)
+    if (held[static_cast<std::size_t>(end_strip(r))] - held[static_cast<std::size_t>(first_strip(r))] > cap) return true;
+  return false;
 }
 
 int Decomposition::owner(int strip) const {

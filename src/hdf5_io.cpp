@@ -1,5 +1,6 @@
 #include "mpmshock/hdf5_io.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace mpmshock::h5 {
@@ -53,7 +54,7 @@ void check_plausible_size(hid_t set, double bytes, const char* path) {
 
 template <class T>
 std::vector<T> read_rows(hid_t loc, const char* path, hid_t mem_type, std::size_t expected_rows,
-                         const std::vector<hsize_t>& tail) {
+                         const std::vector<hsize_t>& tail, Rows rows) {
   Handle set(H5Dopen2(loc, path, H5P_DEFAULT), H5Dclose, std::string("open dataset ") + path);
   Handle space(H5Dget_space(set.get()), H5Sclose, std::string("read the shape of ") + path);
   const int rank = H5Sget_simple_extent_ndims(space.get());
@@ -65,9 +66,20 @@ std::vector<T> read_rows(hid_t loc, const char* path, hid_t mem_type, std::size_
   double count_d = 1.0;
   for (hsize_t d : dims) count_d *= static_cast<double>(d);
   check_plausible_size(set.get(), count_d * sizeof(T), path);
-  const auto count = static_cast<std::size_t>(count_d);
-  std::vector<T> out(count);
-  if (count > 0) check(H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), std::string("read ") + path);
+  // Rows [first, end) of the dataset's, and of each the trailing dimensions whole.
+  const hsize_t first = std::min<hsize_t>(rows.first, dims[0]), end = std::clamp<hsize_t>(rows.end, first, dims[0]);
+  std::vector<hsize_t> start(dims.size(), 0), count = dims;
+  start[0] = first;
+  count[0] = end - first;
+  std::size_t values = 1;
+  for (hsize_t c : count) values *= static_cast<std::size_t>(c);
+  std::vector<T> out(values);
+  if (values == 0) return out;
+  check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        std::string("select rows of ") + path);
+  Handle memory(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose,
+                std::string("make a memory space for ") + path);
+  check(H5Dread(set.get(), mem_type, memory.get(), space.get(), H5P_DEFAULT, out.data()), std::string("read ") + path);
   return out;
 }
 
@@ -184,12 +196,12 @@ bool has_attribute(hid_t loc, const char* name) { return H5Aexists(loc, name) > 
 bool has_link(hid_t loc, const char* path) { return H5Lexists(loc, path, H5P_DEFAULT) > 0; }
 
 std::vector<double> read_doubles(hid_t loc, const char* path, std::size_t expected_rows,
-                                 const std::vector<hsize_t>& tail) {
-  return read_rows<double>(loc, path, H5T_NATIVE_DOUBLE, expected_rows, tail);
+                                 const std::vector<hsize_t>& tail, Rows rows) {
+  return read_rows<double>(loc, path, H5T_NATIVE_DOUBLE, expected_rows, tail, rows);
 }
 
-std::vector<std::uint32_t> read_uint32(hid_t loc, const char* path, std::size_t expected_rows) {
-  return read_rows<std::uint32_t>(loc, path, H5T_NATIVE_UINT32, expected_rows, {});
+std::vector<std::uint32_t> read_uint32(hid_t loc, const char* path, std::size_t expected_rows, Rows rows) {
+  return read_rows<std::uint32_t>(loc, path, H5T_NATIVE_UINT32, expected_rows, {}, rows);
 }
 
 std::vector<unsigned char> read_raw(hid_t loc, const char* path, std::vector<hsize_t>& dims) {
@@ -236,8 +248,8 @@ std::vector<std::string> dataset_names(hid_t loc, const char* group) {
   return names;
 }
 
-std::vector<std::uint8_t> read_uint8(hid_t loc, const char* path, std::size_t expected_rows) {
-  return read_rows<std::uint8_t>(loc, path, H5T_NATIVE_UINT8, expected_rows, {});
+std::vector<std::uint8_t> read_uint8(hid_t loc, const char* path, std::size_t expected_rows, Rows rows) {
+  return read_rows<std::uint8_t>(loc, path, H5T_NATIVE_UINT8, expected_rows, {}, rows);
 }
 
 }  // namespace mpmshock::h5

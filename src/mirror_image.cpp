@@ -33,14 +33,15 @@ MirrorImage<D>::MirrorImage(const std::vector<std::size_t>& flyer_rows, const st
 }
 
 template <int D>
-Particles<D> MirrorImage<D>::half(const Particles<D>& whole) const {
+Particles<D> MirrorImage<D>::half(const Particles<D>& whole, std::size_t first) const {
   Particles<D> out;
   out.enable_fields_of(whole);
   const std::size_t flyer = flyer_points();
-  out.reserve(whole.size() - flyer);
-  for (std::size_t p = flyer; p < whole.size(); ++p) {
+  const std::size_t from = std::min(whole.size(), flyer > first ? flyer - first : 0);
+  out.reserve(whole.size() - from);
+  for (std::size_t p = from; p < whole.size(); ++p) {
     out.append_copy(whole, p);
-    out.id.back() = static_cast<std::uint32_t>(p - flyer);
+    out.id.back() = static_cast<std::uint32_t>(first + p - flyer);
   }
   return out;
 }

@@ -1,6 +1,8 @@
 #include "mpmshock/probes.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "mpmshock/decomposition.hpp"
@@ -14,41 +16,79 @@ std::string probes_header(bool paper_temperature) {
   return std::string(kProbesHeader) + (paper_temperature ? ",paper_temperature" : "");
 }
 
+namespace {
+
+// Every rank's ids, in increasing order, at every rank.
+std::vector<std::uint32_t> ids_of_all_ranks(const std::vector<std::uint32_t>& mine, const Comm& comm) {
+  if (!comm.parallel()) return mine;
+  std::vector<char> bytes(mine.size() * sizeof(std::uint32_t));
+  std::memcpy(bytes.data(), mine.data(), bytes.size());
+  std::vector<char> all;
+  for (const std::vector<char>& part : comm.gather(bytes)) all.insert(all.end(), part.begin(), part.end());
+  comm.broadcast(all);
+  std::vector<std::uint32_t> ids(all.size() / sizeof(std::uint32_t));
+  std::memcpy(ids.data(), all.data(), all.size());
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+}  // namespace
+
 template <int D>
-Probes<D>::Probes(const Scene& scene, const Particles<D>& p, const GridGeometry<D>& grid)
+Probes<D>::Probes(const Scene& scene, const Particles<D>& p, const GridGeometry<D>& grid, const MirrorImage<D>& mirror,
+                  const Comm& comm)
     : interval_(scene.probe_interval) {
   auto periodic = [](double a, double b, double period) {
     const double d = std::abs(a - b);
     return std::min(d, period - d);
   };
+  // Every point of the whole impact this rank holds or mirrors: its id in the whole, position, body.
+  auto for_each_point = [&](auto&& visit) {
+    const std::size_t first_target = mirror.flyer_points();
+    for (std::size_t q = 0; q < p.size(); ++q) {
+      visit(static_cast<std::uint32_t>(first_target + p.id[q]), p.x[q], p.body[q]);
+      if (!mirror.on()) continue;
+      Vec<D> image = p.x[q];
+      image[1] = -image[1];
+      visit(mirror.image_of(p.id[q]), image, Body::flyer);
+    }
+  };
   double top = -std::numeric_limits<double>::infinity();
   for (std::size_t q = 0; q < p.size(); ++q)
     if (p.body[q] == Body::target) top = std::max(top, p.x[q][1]);
+  top = comm.max(top);
   for (const ProbeSpec& spec : scene.probes) {
     Probe probe{spec.name, {}};
     if (spec.kind == ProbeSpec::Kind::surface) {
       // The top cell: particles_per_cell rows of points (the top row alone rings after the shock
       // reflects; a cell's worth of rows is what the grid resolves).
       const double depth = scene.cell_size * (1.0 - 1e-9);
-      for (std::size_t q = 0; q < p.size(); ++q)
-        if (p.body[q] == Body::target && p.x[q][1] > top - depth) probe.ids.push_back(p.id[q]);
+      std::vector<std::uint32_t> mine;
+      for_each_point([&](std::uint32_t id, const Vec<D>& x, Body body) {
+        if (body == Body::target && x[1] > top - depth) mine.push_back(id);
+      });
+      std::sort(mine.begin(), mine.end());
+      probe.ids = ids_of_all_ranks(mine, comm);
     } else {
+      // The nearest point, the lowest id of those as near.
       double best = std::numeric_limits<double>::infinity();
-      std::uint32_t nearest = 0;
+      std::uint32_t nearest = std::numeric_limits<std::uint32_t>::max();
       const double z = spec.z >= 0.0 ? spec.z : 0.5 * grid.depth();  // 3D only
-      for (std::size_t q = 0; q < p.size(); ++q) {
-        const double dx = periodic(p.x[q][0], spec.x, grid.width());
-        double d2 = dx * dx + (p.x[q][1] - spec.y) * (p.x[q][1] - spec.y);
+      for_each_point([&](std::uint32_t id, const Vec<D>& x, Body) {
+        const double dx = periodic(x[0], spec.x, grid.width());
+        double d2 = dx * dx + (x[1] - spec.y) * (x[1] - spec.y);
         if constexpr (D == 3) {
-          const double dz = periodic(p.x[q][2], z, grid.depth());
+          const double dz = periodic(x[2], z, grid.depth());
           d2 += dz * dz;
         }
-        if (d2 < best) {
+        if (d2 < best || (d2 == best && id < nearest)) {
           best = d2;
-          nearest = p.id[q];
+          nearest = id;
         }
-      }
-      probe.ids.push_back(nearest);
+      });
+      const double least = comm.min(best);
+      const double id = comm.min(best == least ? static_cast<double>(nearest) : std::numeric_limits<double>::infinity());
+      probe.ids.push_back(static_cast<std::uint32_t>(id));
     }
     probes_.push_back(std::move(probe));
   }

@@ -123,12 +123,14 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
           " lattice points) does not match its scene (" + std::to_string(lattice[b]) + ")");
     material += bodies[b]->material_points;
   }
+  if (r.total_points != material)
+    bad("it holds " + std::to_string(r.total_points) + " points, its bodies " + std::to_string(material));
+
+  // The points read (an MPI rank's share of them) from here on.
   const Particles<D>& p = r.points;
   const std::size_t n = p.size();
-  if (n != material) bad("it holds " + std::to_string(n) + " points, its bodies " + std::to_string(material));
-
   for (std::size_t q = 0; q < n; ++q)  // snapshots hold points in id order, and restarts rely on it
-    if (p.id[q] != q) bad("its point ids are not a numbering of its points in order");
+    if (p.id[q] != r.first_point + q) bad("its point ids are not a numbering of its points in order");
   const Model model(scene);
   const double J_min = model.limiting_compression();
   auto finite = [](const auto& values) {
@@ -173,13 +175,42 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
       model.shape);
 }
 
+// The ids [first, end) of this rank's share of the points a restart simulates: with symmetry = on
+// the target's, ids from flyer_points on in the snapshot's whole impact. Symmetry cannot change on
+// restart, so the snapshot's own scene says.
+std::pair<std::size_t, std::size_t> share_of_snapshot(const RunState& run, std::size_t n, const std::string& snapshot,
+                                                      const Comm& comm) {
+  const Scene own = parse_scene(run.scene_text, snapshot + " (scene)", with_old_defaults(run.scene_text, {}));
+  const std::size_t from = own.symmetry == Symmetry::on ? std::min(run.flyer.material_points, n) : 0;
+  const auto rank = static_cast<std::uint64_t>(comm.rank()), ranks = static_cast<std::uint64_t>(comm.size());
+  const std::uint64_t simulated = n - from;
+  return {from + rank * simulated / ranks, from + (rank + 1) * simulated / ranks};
+}
+
+// Each rank checked its share of the points: the first rank's complaint is every rank's.
+void agree_on_complaint(const std::string& mine, const Comm& comm) {
+  if (!comm.parallel()) {
+    if (!mine.empty()) throw SceneError(mine);
+    return;
+  }
+  if (comm.max(mine.empty() ? 0.0 : 1.0) == 0.0) return;
+  std::string first;
+  for (const std::vector<char>& why : comm.gather(std::vector<char>(mine.begin(), mine.end())))
+    if (first.empty()) first.assign(why.begin(), why.end());
+  throw SceneError(first);  // rank 0 says it; the others end alike
+}
+
 template <int D>
 RunResult restart_from(const std::string& snapshot, const std::vector<std::string>& overrides,
                        const RunOptions& options) {
-  Restart<D> r = read_snapshot<D>(snapshot);
+  const Comm& comm = Comm::world();
+  // Each rank reads its share of the points (one rank: all of them); they move to their slabs' ranks.
+  Restart<D> r = read_snapshot<D>(snapshot, [&](const RunState& run, std::size_t n) {
+    return share_of_snapshot(run, n, snapshot, comm);
+  });
   const Scene scene =
       parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, overrides));
-  check_fits<D>(scene);
+  check_fits<D>(scene, comm.size(), comm.node_ranks());
   const double t0 = r.run.clock.time;
   if (!(scene.end_time > t0))
     throw SceneError(scene.where("end_time") + ": key 'end_time': the snapshot is at t = " + std::to_string(t0 * 1e9) +
@@ -191,11 +222,16 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   const fs::path dir = new_dir ? fs::path(scene.output_dir) : fs::absolute(snapshot).parent_path();
   const int index = r.run.schedule.snapshot_index;
   const GridGeometry<D> grid = build_grid_geometry<D>(scene);
-  validate_restart(r, scene, grid, snapshot);
+  std::string complaint;
+  try {
+    validate_restart(r, scene, grid, snapshot);
+  } catch (const SceneError& e) {
+    complaint = e.what();
+  }
+  agree_on_complaint(complaint, comm);
   std::vector<XdmfSnapshot> earlier;
   bool append = false;
   DirectoryLock lock;
-  const Comm& comm = Comm::world();
   on_root(comm, [&] {  // the directory is rank 0's
   if (new_dir) {
     lock = prepare_output_dir(scene, options.force);
@@ -242,15 +278,18 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   r.run.scene_text = resolved_scene(scene);
 
   // Probes and the mirror image come from the initial state, as the run made them (and only they
-  // are kept of it). A snapshot holds the whole impact; with symmetry = on the target's points go on.
+  // are kept of it; each rank makes a share of its rows). A snapshot holds the whole impact; with
+  // symmetry = on the target's points go on.
   MirrorImage<D> mirror;
   Probes<D> probes;
   if (!scene.probes.empty() || scene.symmetry == Symmetry::on) {
-    const InitialState<D> initial = build_initial_state<D>(scene);
-    probes = probes_of(scene, initial);
+    const InitialBuilder<D> builder(scene);
+    const std::vector<char> share = builder.share(comm.rank(), comm.size());
+    const InitialState<D> initial = builder.build(&share);
+    probes = probes_of(scene, initial, comm);
     mirror = initial.mirror;
   }
-  if (mirror.on()) r.points = mirror.half(r.points);
+  if (mirror.on()) r.points = mirror.half(r.points, r.first_point);
   std::optional<Simulation<D>> simulation;
   try {  // the saved unreached material is checked against the points
     simulation.emplace(scene, grid, std::move(r.points), r.run.clock);
@@ -300,7 +339,7 @@ std::string check_restart_in(const std::string& snapshot, const std::vector<std:
   Restart<D> r = read_snapshot<D>(snapshot);
   const Scene scene =
       parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, overrides));
-  check_fits<D>(scene);
+  check_fits<D>(scene, 1, 1);  // as one process
   validate_restart(r, scene, build_grid_geometry<D>(scene), snapshot);
   std::ostringstream out;
   out << "snapshot " << snapshot << ": t = " << r.run.clock.time * 1e9 << " ns, step " << r.run.clock.steps << ", "

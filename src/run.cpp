@@ -15,18 +15,20 @@ namespace {
 // before the output directory is touched: a refused or impossible run deletes and writes nothing.
 template <int D>
 RunResult run_new(const Scene& scene, const RunOptions& options) {
-  check_fits<D>(scene);
-  InitialState<D> initial = build_initial_state<D>(scene);  // SceneError on voids that cannot fit
   const Comm& comm = Comm::world();
+  check_fits<D>(scene, comm.size(), comm.node_ranks());
+  // Each rank makes the points of its share of the rows only (on one rank: all of them).
+  const InitialBuilder<D> builder(scene);  // SceneError on voids that cannot fit
+  const std::vector<char> share = builder.share(comm.rank(), comm.size());
+  InitialState<D> initial = builder.build(comm.parallel() ? &share : nullptr);
   if (comm.root())
     for (const std::string& w : scene_warnings(scene)) std::fprintf(stderr, "mpmshock: warning: %s\n", w.c_str());
   RunState run;
   run.scene_text = resolved_scene(scene);
   run.target = initial.target;
   run.flyer = initial.flyer;
-  // Summed as every later total is; every rank holds all the initial points.
-  run.initial = initial.mirror.whole(compute_totals(initial.particles, Comm::single()));
-  Probes<D> probes = probes_of(scene, initial);
+  run.initial = initial.mirror.whole(compute_totals(initial.particles, comm));  // summed as every later total is
+  Probes<D> probes = probes_of(scene, initial, comm);
   Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
 
   const fs::path dir(scene.output_dir);

@@ -2,10 +2,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
 
+#include "mpmshock/decomposition.hpp"
 #include "mpmshock/model.hpp"
 #include "mpmshock/strip_bins.hpp"
 
@@ -60,8 +62,11 @@ SizeEstimate estimate_size(const Scene& s) {
 }
 
 template <int D>
-void check_fits(const Scene& s) {
+void check_fits(const Scene& s, int ranks, int node_ranks) {
   const SizeEstimate e = estimate_size<D>(s);
+  // A rank holds at most kMaxPointShare times its even share (decomposition.hpp).
+  const double share = static_cast<double>(node_ranks) *
+                       std::min(1.0, static_cast<double>(Decomposition::kMaxPointShare) / static_cast<double>(std::max(ranks, 1)));
   // The key that makes the size: the points' spacing, or the grid's margin (which grows with
   // end_time when it is automatic).
   const bool points_dominate = e.point_bytes >= e.node_bytes;
@@ -73,10 +78,13 @@ void check_fits(const Scene& s) {
   if (!(e.nodes < 2e9)) fail(std::string("the grid would be too large to index: ") + counts);
   const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES)), page = static_cast<double>(sysconf(_SC_PAGESIZE));
   const double memory = pages > 0 && page > 0 ? pages * page : 0.0;
-  if (memory > 0.0 && !(e.bytes() <= 0.9 * memory)) {
-    char text[400];
-    std::snprintf(text, sizeof text, "the run would need about %.3g GiB (%s), more than this machine's %.3g GiB of memory%s",
-                  e.bytes() / 1073741824.0, counts, memory / 1073741824.0,
+  if (memory > 0.0 && !(share * e.bytes() <= 0.9 * memory)) {
+    char text[480];
+    char on_ranks[120] = "";
+    if (ranks > 1)
+      std::snprintf(on_ranks, sizeof on_ranks, " for the %d of its %d MPI ranks on this machine", node_ranks, ranks);
+    std::snprintf(text, sizeof text, "the run would need about %.3g GiB%s (%s), more than this machine's %.3g GiB of memory%s",
+                  share * e.bytes() / 1073741824.0, on_ranks, counts, memory / 1073741824.0,
                   key == "end_time" ? "; the automatic grid margin grows with end_time: set grid_margin" : "");
     fail(text);
   }
@@ -193,6 +201,24 @@ InitialState<D> InitialBuilder<D>::build(const std::vector<char>* keep) const {
 }
 
 template <int D>
+std::vector<char> InitialBuilder<D>::share(int rank, int ranks) const {
+  std::size_t total = 0;
+  for (std::size_t n : row_points_) total += n;
+  std::vector<char> keep(row_points_.size(), 0);
+  std::size_t before = 0;  // the points of the rows below
+  for (std::size_t r = 0; r < row_points_.size(); ++r) {
+    // A row goes to the rank whose equal share of the points its first point falls in.
+    const auto owner = total > 0 ? static_cast<int>(std::min<std::uint64_t>(
+                                       static_cast<std::uint64_t>(ranks) - 1,
+                                       static_cast<std::uint64_t>(before) * static_cast<std::uint64_t>(ranks) / total))
+                                 : 0;
+    keep[r] = owner == rank;
+    before += row_points_[r];
+  }
+  return keep;
+}
+
+template <int D>
 InitialState<D> build_initial_state(const Scene& s) {
   return InitialBuilder<D>(s).build();
 }
@@ -203,8 +229,8 @@ template InitialState<2> build_initial_state<2>(const Scene&);
 template InitialState<3> build_initial_state<3>(const Scene&);
 template SizeEstimate estimate_size<2>(const Scene&);
 template SizeEstimate estimate_size<3>(const Scene&);
-template void check_fits<2>(const Scene&);
-template void check_fits<3>(const Scene&);
+template void check_fits<2>(const Scene&, int, int);
+template void check_fits<3>(const Scene&, int, int);
 template GridGeometry<2> build_grid_geometry<2>(const Scene&);
 template GridGeometry<3> build_grid_geometry<3>(const Scene&);
 

@@ -84,20 +84,23 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
     : comm_(&comm), whole_geo_(grid.whole()), slabs_(strip_count(grid)), model_(scene), points_(std::move(points)),
       grid_(comm.parallel() ? GridGeometry<D>{} : grid), kernels_(kernels_for<D>(model_)),
       effects_(effects_for<D>(model_, grid)), unreached_(points_.size()), clock_(clock) {
-  total_points_ = points_.size();  // every rank is given all of them
+  // Each rank is given a share of the points (one rank: all of them), in id order.
+  total_points_ = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(points_.size())));
   for (const auto& e : effects_)
     if (const auto* plane = dynamic_cast<const SymmetryPlane<D>*>(e.get())) plane_ = plane;
   if (model_.symmetry_plane && std::find(points_.body.begin(), points_.body.end(), Body::flyer) != points_.body.end())
     throw std::logic_error("symmetry = on simulates the target's points alone (build_initial_state gives them)");
+  points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
   if (comm.parallel()) {
-    // Slabs of as many points each; the first step's end re-balances them by what it computes.
+    // Slabs of as many points each (the first step's end re-balances them by what it computes);
+    // then every point moves to the rank whose slab holds it.
     std::vector<std::int64_t> work(static_cast<std::size_t>(slabs_.strips()), 0);
     for (std::size_t p = 0; p < points_.size(); ++p) ++work[static_cast<std::size_t>(strip_of(points_.x[p][1]))];
+    comm.sum(work.data(), static_cast<int>(work.size()));
     take_slab(Decomposition::balanced(work, comm.size(), first_strip_end_needed()));
-    keep_own_points(points_);
+    redistribute();
   }
   unreached_ = UnreachedMaterial<D>(total_points_);
-  points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
   if (model_.skip_unreached && clock.unreached_tail != Clock::kNoneSaved)
     unreached_ = UnreachedMaterial<D>(scene, model_, points_, clock.unreached_head, clock.unreached_tail, comm);
   remember_unreached();
@@ -149,15 +152,7 @@ void Simulation<D>::take_slab(const Decomposition& slabs) {
 }
 
 template <int D>
-void Simulation<D>::keep_own_points(Particles<D>& all) {
-  const int rank = comm_->rank();
-  std::vector<char> keep(all.size());
-  for (std::size_t p = 0; p < all.size(); ++p) keep[p] = slabs_.owner(strip_of(all.x[p][1])) == rank;
-  keep_points(all, keep);
-}
-
-template <int D>
-bool Simulation<D>::hop() {
+bool Simulation<D>::hop(std::size_t most) {
   const int rank = comm_->rank(), size = comm_->size();
   const int below = rank > 0 ? rank - 1 : -1, above = rank + 1 < size ? rank + 1 : -1;
   std::vector<std::size_t> down, up;
@@ -172,7 +167,9 @@ bool Simulation<D>::hop() {
     if (y > inside_from && y < inside_to) continue;
     const int owner = slabs_.owner(strip_of(y));
     if (owner == rank) continue;
-    (owner < rank ? down : up).push_back(p);
+    std::vector<std::size_t>& way = owner < rank ? down : up;
+    if (way.size() == most) continue;  // in a later hop
+    way.push_back(p);
     keep[p] = 0;
   }
   // Sizes first, then the points, each in one round with both neighbours.
@@ -204,19 +201,26 @@ void Simulation<D>::migrate() {
 
 template <int D>
 void Simulation<D>::redistribute() {
-  // After new slabs points may be farther from home: they hop until every rank has only its own.
-  while (comm_->sum(static_cast<std::int64_t>(hop())) > 0) {
+  // After new slabs points may be farther from home, and many: they hop, at most a batch each way
+  // at a time (what a hop holds in flight is bounded, not a share of the points), until every rank
+  // has only its own.
+  constexpr std::size_t kBatch = 65536;
+  while (comm_->sum(static_cast<std::int64_t>(hop(kBatch))) > 0) {
   }
 }
 
 template <int D>
-std::vector<std::int64_t> Simulation<D>::work_per_strip() const {
-  std::vector<std::int64_t> work(static_cast<std::size_t>(slabs_.strips()), 0);
-  for (std::size_t p = 0; p < points_.size(); ++p)
-    work[static_cast<std::size_t>(strip_of(points_.x[p][1]))] +=
-        unreached_.unreached(points_, p) ? 1 : Decomposition::kComputedWeight;
-  comm_->sum(work.data(), static_cast<int>(work.size()));
-  return work;
+typename Simulation<D>::StripLoads Simulation<D>::strip_loads() const {
+  const std::size_t strips = static_cast<std::size_t>(slabs_.strips());
+  std::vector<std::int64_t> both(2 * strips, 0);  // the weights, then the points
+  for (std::size_t p = 0; p < points_.size(); ++p) {
+    const auto s = static_cast<std::size_t>(strip_of(points_.x[p][1]));
+    both[s] += unreached_.unreached(points_, p) ? 1 : Decomposition::kComputedWeight;
+    ++both[strips + s];
+  }
+  comm_->sum(both.data(), static_cast<int>(both.size()));
+  return {{both.begin(), both.begin() + static_cast<std::ptrdiff_t>(strips)},
+          {both.begin() + static_cast<std::ptrdiff_t>(strips), both.end()}};
 }
 
 template <int D>
@@ -235,7 +239,8 @@ void Simulation<D>::rebalance() {
   balanced_once_ = true;
   busy_seconds_ = 0.0;
   last_balance_step_ = clock_.steps;
-  const std::vector<std::int64_t> weights = work_per_strip();
+  const StripLoads loads = strip_loads();
+  const std::vector<std::int64_t>& weights = loads.weights;
   const int ranks = comm_->size(), rank = comm_->rank();
   std::int64_t mine = 0;
   for (int s = slabs_.first_strip(rank); s < slabs_.end_strip(rank); ++s) mine += weights[static_cast<std::size_t>(s)];
@@ -252,9 +257,12 @@ void Simulation<D>::rebalance() {
     const double f = seconds_per_weight[static_cast<std::size_t>(slabs_.owner(static_cast<int>(s)))];
     work[s] = static_cast<std::int64_t>(std::llround(static_cast<double>(weights[s]) * (f > 0.0 ? f : typical) / typical * 64.0));
   }
-  const Decomposition better = Decomposition::balanced(work, ranks, first_strip_end_needed());
+  const Decomposition better = Decomposition::balanced(work, ranks, first_strip_end_needed(), loads.points);
   imbalance_ = slabs_.imbalance(work);
-  if (better == slabs_ || imbalance_ < better.imbalance(work) + 0.05) return;
+  if (better == slabs_) return;
+  // New slabs for a rank holding too many points, or for work 5 % more even.
+  const bool relieves = slabs_.crowded(loads.points) && !better.crowded(loads.points);
+  if (!relieves && imbalance_ < better.imbalance(work) + 0.05) return;
   take_slab(better);
   redistribute();
   imbalance_ = better.imbalance(work);

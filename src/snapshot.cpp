@@ -45,11 +45,11 @@ void unflatten(const std::vector<double>& flat_values, std::vector<T>& v) {
 template <int D>
 constexpr hsize_t kDeviatorComponents = D == 2 ? 3 : 5;
 
-// A snapshot is written in chunks of kChunkRows rows (a multiple of the 64 Ki-row HDF5 chunks of a
+// A snapshot is written in chunks of kChunkRows rows (the 64 Ki-row HDF5 chunks of a
 // compressed dataset): each chunk is the whole impact's points of those rows, the mirrored flyer's
 // made from the target's, gathered from the ranks that hold them (snapshot_rows), and every dataset
 // gets its rows of it. No rank, rank 0 included, holds more than a chunk beyond its own points.
-constexpr std::size_t kChunkRows = 4 * 65536;
+constexpr std::size_t kChunkRows = 65536;
 
 // One dataset of the snapshot: what a row of it holds, and how a chunk's points fill its rows.
 template <int D>
@@ -562,7 +562,7 @@ SnapshotHeader read_snapshot_header(const std::string& path) {
 namespace {
 
 template <int D>
-Restart<D> read_state(const std::string& path) {
+Restart<D> read_state(const std::string& path, const PointChooser& choose) {
   {
     Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open it as HDF5");
     const hid_t f = file.get();
@@ -623,42 +623,49 @@ Restart<D> read_state(const std::string& path) {
         b->voids.push_back(D == 3 ? Void{v[k], v[k + 1], v[k + 3], v[k + 2]} : Void{v[k], v[k + 1], v[k + 2]});
     }
 
+    // The rows to read, of the whole impact's n (the points are in id order).
+    r.total_points = n;
+    const auto [first, end] = choose ? choose(run, n) : std::pair<std::size_t, std::size_t>{0, n};
+    if (!(first <= end && end <= n)) throw std::logic_error("read_snapshot: rows outside the snapshot's");
+    r.first_point = first;
+    const h5::Rows rows{first, end};
+    const std::size_t m = end - first;
     Particles<D>& p = r.points;
     const bool strength = h5::has_link(g, "deviatoric_stress"), back = h5::has_link(g, "back_stress");
-    p.id = h5::read_uint32(f, "/particles/id", n);
-    const std::vector<std::uint8_t> body = h5::read_uint8(f, "/particles/body", n);
-    p.body.resize(n);
-    for (std::size_t q = 0; q < n; ++q) {
+    p.id = h5::read_uint32(f, "/particles/id", n, rows);
+    const std::vector<std::uint8_t> body = h5::read_uint8(f, "/particles/body", n, rows);
+    p.body.resize(m);
+    for (std::size_t q = 0; q < m; ++q) {
       if (body[q] > 1) throw std::runtime_error("/particles/body holds " + std::to_string(body[q]) + ", not 0 or 1");
       p.body[q] = body[q] ? Body::target : Body::flyer;
     }
-    unflatten(h5::read_doubles(f, "/particles/position", n, {d}), p.x);
-    unflatten(h5::read_doubles(f, "/particles/velocity", n, {d}), p.v);
-    p.m = h5::read_doubles(f, "/particles/mass", n, {});
-    p.V0 = h5::read_doubles(g, "volume0", n, {});
-    unflatten(h5::read_doubles(f, "/particles/deformation_gradient", n, {d, d}), p.F);
-    unflatten(h5::read_doubles(f, "/particles/velocity_gradient", n, {d, d}), p.L);
-    p.E = h5::read_doubles(f, "/particles/internal_energy", n, {});
-    p.P = h5::read_doubles(f, "/particles/pressure", n, {});
+    unflatten(h5::read_doubles(f, "/particles/position", n, {d}, rows), p.x);
+    unflatten(h5::read_doubles(f, "/particles/velocity", n, {d}, rows), p.v);
+    p.m = h5::read_doubles(f, "/particles/mass", n, {}, rows);
+    p.V0 = h5::read_doubles(g, "volume0", n, {}, rows);
+    unflatten(h5::read_doubles(f, "/particles/deformation_gradient", n, {d, d}, rows), p.F);
+    unflatten(h5::read_doubles(f, "/particles/velocity_gradient", n, {d, d}, rows), p.L);
+    p.E = h5::read_doubles(f, "/particles/internal_energy", n, {}, rows);
+    p.P = h5::read_doubles(f, "/particles/pressure", n, {}, rows);
     // Format 1 named the viscous pressure after the effect.
     p.q = h5::read_doubles(f, h5::has_link(f, "/particles/viscous_pressure") ? "/particles/viscous_pressure"
                                                                                : "/particles/artificial_viscosity",
-                           n, {});
-    p.work.assign(n, 0.0);
+                           n, {}, rows);
+    p.work.assign(m, 0.0);
     p.enable_strength(strength, back);
     if (strength) {
-      unflatten(h5::read_doubles(g, "deviatoric_stress", n, {C}), p.s);
-      p.eps_p = h5::read_doubles(f, "/particles/plastic_strain", n, {});
+      unflatten(h5::read_doubles(g, "deviatoric_stress", n, {C}, rows), p.s);
+      p.eps_p = h5::read_doubles(f, "/particles/plastic_strain", n, {}, rows);
     }
-    if (back) unflatten(h5::read_doubles(g, "back_stress", n, {C}), p.alpha);
+    if (back) unflatten(h5::read_doubles(g, "back_stress", n, {C}, rows), p.alpha);
     p.enable_cold_work(h5::has_link(g, "stored_energy"));
-    if (p.stores_cold_work()) p.E_stored = h5::read_doubles(g, "stored_energy", n, {});
+    if (p.stores_cold_work()) p.E_stored = h5::read_doubles(g, "stored_energy", n, {}, rows);
     p.enable_plastic_heat(h5::has_link(g, "plastic_heat"));
-    if (p.tracks_plastic_heat()) p.plastic_heat = h5::read_doubles(g, "plastic_heat", n, {});
+    if (p.tracks_plastic_heat()) p.plastic_heat = h5::read_doubles(g, "plastic_heat", n, {}, rows);
     p.enable_failure(h5::has_link(g, "failure_J"));
     if (p.has_failure()) {
-      p.failure_J = h5::read_doubles(g, "failure_J", n, {});
-      p.damage = h5::read_doubles(f, "/particles/damage", n, {});
+      p.failure_J = h5::read_doubles(g, "failure_J", n, {}, rows);
+      p.damage = h5::read_doubles(f, "/particles/damage", n, {}, rows);
     }
     return r;
   }
@@ -667,11 +674,11 @@ Restart<D> read_state(const std::string& path) {
 }  // namespace
 
 template <int D>
-Restart<D> read_snapshot(const std::string& path) {
+Restart<D> read_snapshot(const std::string& path, const PointChooser& choose) {
   h5::prepare_library();
   try {
-    if (check_seal(path) == Seal::absent) probe_in_child(path, [&] { (void)read_state<D>(path); });
-    return read_state<D>(path);
+    if (check_seal(path) == Seal::absent) probe_in_child(path, [&] { (void)read_state<D>(path, choose); });
+    return read_state<D>(path, choose);
   } catch (const std::exception& e) {
     // A snapshot that cannot be restarted is a bad request (exit 2), whatever is wrong with it.
     throw SceneError("snapshot " + path + ": " + e.what());
@@ -681,7 +688,7 @@ Restart<D> read_snapshot(const std::string& path) {
 #define MPMSHOCK_INSTANTIATE(D)                                                                                  \
   template void write_snapshot<D>(const std::string&, const Particles<D>&, const HugoniotTemperature*,            \
                                   const RunState&, const SnapshotOptions<D>&);                                    \
-  template Restart<D> read_snapshot<D>(const std::string&);
+  template Restart<D> read_snapshot<D>(const std::string&, const PointChooser&);
 MPMSHOCK_INSTANTIATE(2)
 MPMSHOCK_INSTANTIATE(3)
 #undef MPMSHOCK_INSTANTIATE

@@ -78,6 +78,38 @@ cp -r porous-2 restart1
 "$bin" --restart restart1/snapshot_00001.h5 --quiet --force >/dev/null 2>restart1.err ||
   fail "restart on 1 rank exited $?: $(cat restart1.err)"
 same porous-1 restart1 "2-rank run restarted on 1 rank"
+# Each rank reads its share of a snapshot's points: the whole impact (no mirror image, probes on)
+# from the middle of the 3-rank run on 2 ranks.
+cp -r whole-3 restart-whole
+"${mpirun[@]}" -np 2 "$bin" --restart restart-whole/snapshot_00001.h5 --quiet --force >/dev/null 2>restart-whole.err ||
+  fail "whole impact restarted on 2 ranks exited $?: $(tail -3 restart-whole.err)"
+same whole-1 restart-whole "3-rank whole impact restarted on 2 ranks"
+
+# A snapshot whose last point lies off the grid (unsealed, so that it is read at all): the rank
+# whose share holds it finds it; exit 2 with one message, the one one process gives.
+mkdir bad bad1
+cp porous-1/snapshot_00001.h5 bad/
+/usr/bin/python3 - bad/snapshot_00001.h5 <<'END'
+import sys
+import h5py
+with h5py.File(sys.argv[1], "r+") as f:
+    x = f["/particles/position"]
+    x[x.shape[0] - 1, 1] = 1.0
+with open(sys.argv[1], "r+b") as f:
+    f.write(b"unsealed")
+END
+cp bad/snapshot_00001.h5 bad1/
+"$bin" --restart bad1/snapshot_00001.h5 --quiet --force >/dev/null 2>bad1.err
+rc=$?
+[ "$rc" -eq 2 ] || fail "off-grid point on 1 rank: exit $rc, expected 2"
+"${mpirun[@]}" -np 3 "$bin" --restart bad/snapshot_00001.h5 --quiet --force >/dev/null 2>bad3.err
+rc=$?
+[ "$rc" -eq 2 ] || fail "off-grid point on 3 ranks: exit $rc, expected 2: $(tail -3 bad3.err)"
+complaint=$(grep -o "point [0-9]* lies outside the grid.*" bad1.err)
+[ -n "$complaint" ] && [ "$(grep -c "lies outside" bad3.err)" -eq 1 ] &&
+  [ "$(grep -o "point [0-9]* lies outside the grid.*" bad3.err)" = "$complaint" ] ||
+  fail "off-grid point on 3 ranks: not the one message one rank gives ($complaint): $(cat bad3.err)"
+echo "a bad point in one rank's share: exit 2, $complaint"
 
 # A failure on one rank: the point that leaves the grid first is at the top, on the last rank. Every
 # rank stops at the same step with exit 3, the message names the point as one process does, and the

@@ -33,6 +33,8 @@ class Comm {
   int size() const { return size_; }
   bool root() const { return rank_ == 0; }
   bool parallel() const { return size_ > 1; }
+  // The ranks on this machine (sharing its memory), this one included.
+  int node_ranks() const { return node_size_; }
 
   // Element-wise across ranks, the result on every rank.
   void sum(ExactSum* sums, int count) const;
@@ -78,9 +80,8 @@ class Comm {
   const Traffic& traffic() const { return traffic_; }
 
  private:
-  int rank_ = 0, size_ = 1;
+  int rank_ = 0, size_ = 1, node_size_ = 1;
   mutable Traffic traffic_;
-
 };
 
 }  // namespace mpmshock

@@ -6,7 +6,11 @@
 // top strip's points also touch (halo.hpp). Slabs are chosen so that the ranks' work is even: each
 // strip weighs its computed points (kComputedWeight each) and the points nothing has reached yet
 // (1 each: they are only moved), and the slabs are re-chosen as the material moves and compresses
-// (Simulation::step, every 20 steps when that evens the work by 5 % or more). Results do not depend on the slabs: every sum of the step is one process's
+// (Simulation::step, every 20 steps when that evens the work by 5 % or more). Even work is not even
+// memory: the points nothing has reached weigh little, so the rank whose slab holds them would
+// hold most of the points; no rank is given more than kMaxPointShare times the mean number of
+// points where the strips allow it, at the cost of less even work while the front is young.
+// Results do not depend on the slabs: every sum of the step is one process's
 // (halo.hpp, exact_sum.hpp), so the slabs are free to follow the load.
 #pragma once
 
@@ -26,13 +30,18 @@ class Decomposition {
   // check that it stays in its slab) about 2 ns.
   static constexpr std::int64_t kComputedWeight = 50;
   static constexpr int kMinStrips = 2;  // per rank: a point moves under a cell per step, so only to a neighbour
+  static constexpr std::int64_t kMaxPointShare = 2;  // the most points a rank holds, over the mean
 
   // One rank holding all `strips`.
   explicit Decomposition(int strips = 0) : bounds_{0, strips} {}
   // Slabs of even work for `ranks`, from each strip's work; rank 0's slab reaches at least to strip
-  // `first_end_min` (it must hold the symmetry plane's rows). Throws SceneError when the grid has
-  // too few strips for that many ranks.
-  static Decomposition balanced(const std::vector<std::int64_t>& work, int ranks, int first_end_min = 0);
+  // `first_end_min` (it must hold the symmetry plane's rows). With `points` (per strip) no rank holds
+  // more than kMaxPointShare times the mean where the strips allow it. Throws SceneError when the
+  // grid has too few strips for that many ranks.
+  static Decomposition balanced(const std::vector<std::int64_t>& work, int ranks, int first_end_min = 0,
+                                const std::vector<std::int64_t>& points = {});
+  // Whether some rank holds more points than balanced() allows.
+  bool crowded(const std::vector<std::int64_t>& points) const;
 
   int ranks() const { return static_cast<int>(bounds_.size()) - 1; }
   int strips() const { return bounds_.back(); }

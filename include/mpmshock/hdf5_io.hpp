@@ -69,17 +69,22 @@ std::vector<double> read_doubles_attribute(hid_t loc, const char* name);
 bool has_attribute(hid_t loc, const char* name);
 bool has_link(hid_t loc, const char* path);
 
-// Reads a whole dataset, checking its shape: rows == expected_rows (if non-zero) and the
+// Rows [first, end) of a dataset (cut to the rows it has; the default: all of them).
+struct Rows {
+  std::size_t first = 0, end = static_cast<std::size_t>(-1);
+};
+
+// Reads a dataset's rows, checking its shape: rows == expected_rows (if non-zero) and the
 // trailing dimensions equal `tail`.
 std::vector<double> read_doubles(hid_t loc, const char* path, std::size_t expected_rows,
-                                 const std::vector<hsize_t>& tail);
-std::vector<std::uint32_t> read_uint32(hid_t loc, const char* path, std::size_t expected_rows);
+                                 const std::vector<hsize_t>& tail, Rows rows = {});
+std::vector<std::uint32_t> read_uint32(hid_t loc, const char* path, std::size_t expected_rows, Rows rows = {});
 
 // A dataset's raw values in the machine's native form, and its dimensions: the bytes a writer
 // handed to write_dataset with the same native type.
 std::vector<unsigned char> read_raw(hid_t loc, const char* path, std::vector<hsize_t>& dims);
 // The names of the datasets directly in a group, in name order (none if the group is absent).
 std::vector<std::string> dataset_names(hid_t loc, const char* group);
-std::vector<std::uint8_t> read_uint8(hid_t loc, const char* path, std::size_t expected_rows);
+std::vector<std::uint8_t> read_uint8(hid_t loc, const char* path, std::size_t expected_rows, Rows rows = {});
 
 }  // namespace mpmshock::h5

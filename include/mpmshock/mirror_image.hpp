@@ -33,8 +33,9 @@ class MirrorImage {
   bool on() const { return on_; }
   std::size_t flyer_points() const { return on_ ? flyer_start_.back() : 0; }
 
-  // The points to simulate: the target's, numbered from 0 in their whole-run order.
-  Particles<D> half(const Particles<D>& whole) const;
+  // The points to simulate: the target's, numbered from 0 in their whole-run order. `whole` may
+  // be the points of ids [first, first + whole.size()) of the whole alone.
+  Particles<D> half(const Particles<D>& whole, std::size_t first = 0) const;
   // The whole set from the simulated points: the mirrored flyer, then the target, in id order.
   Particles<D> whole(const Particles<D>& half) const;
   // Some of the simulated points (an MPI rank's) and the flyer points that mirror them, for sums

@@ -26,8 +26,11 @@ class Probes {
  public:
   Probes() = default;
   // Resolves the scene's probes on the initial points (the state every run and restart of the
-  // scene starts from) in the grid's periodic column.
-  Probes(const Scene& scene, const Particles<D>& initial, const GridGeometry<D>& grid);
+  // scene starts from) in the grid's periodic column: the points simulated, with the flyer as
+  // their mirror image where that is on. On MPI ranks each rank passes a share of the points (any
+  // split, every point on one rank) and every rank gets the same probes.
+  Probes(const Scene& scene, const Particles<D>& initial, const GridGeometry<D>& grid, const MirrorImage<D>& mirror,
+         const Comm& comm);
 
   bool empty() const { return probes_.empty(); }
   // The time of the first row after time t (probe_interval 0: every step).
@@ -48,11 +51,12 @@ class Probes {
   double interval_ = 0.0;
 };
 
-// The scene's probes, resolved on the whole impact's initial points.
+// The scene's probes, resolved on the whole impact's initial points, of which `initial` holds this
+// rank's share.
 template <int D>
-Probes<D> probes_of(const Scene& scene, const InitialState<D>& initial) {
+Probes<D> probes_of(const Scene& scene, const InitialState<D>& initial, const Comm& comm) {
   if (scene.probes.empty()) return {};
-  return Probes<D>(scene, initial.mirror.whole(initial.particles), initial.grid);
+  return Probes<D>(scene, initial.particles, initial.grid, initial.mirror, comm);
 }
 
 extern template class Probes<2>;

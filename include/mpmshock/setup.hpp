@@ -56,9 +56,10 @@ SizeEstimate estimate_size(const Scene& scene);
 
 // Refuses (SceneError naming the key that makes it so) a scene whose points, grid or memory
 // cannot fit: more memory than the machine has, or a grid too large to index. Run before anything
-// is allocated, deleted or written.
+// is allocated, deleted or written. On MPI ranks a rank holds at most twice its even share of the
+// points and grid (decomposition.hpp), and `node_ranks` of them share this machine's memory.
 template <int D>
-void check_fits(const Scene& scene);
+void check_fits(const Scene& scene, int ranks = 1, int node_ranks = 1);
 
 // The grid of a scene: a periodic column covering both bodies plus grid_margin, with the impact
 // plane y = 0 on a grid line.
@@ -85,6 +86,9 @@ class InitialBuilder {
   const std::vector<std::size_t>& row_points() const { return row_points_; }
   // The initial state with the points of the rows whose `keep` flag is set (null: all of them).
   InitialState<D> build(const std::vector<char>* keep = nullptr) const;
+  // Rank `rank` of `ranks`' share of the rows: consecutive rows holding about as many points as
+  // every other rank's (the flags for build()).
+  std::vector<char> share(int rank, int ranks) const;
 
  private:
   const Scene& scene_;

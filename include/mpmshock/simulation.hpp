@@ -67,9 +67,10 @@ template <int D>
 class Simulation {
  public:
   // A new run from its initial points (time 0, first time step from their state). On several ranks
-  // of `comm` each rank passes all the points and keeps those of its slab.
+  // of `comm` each rank passes a share of the points, in id order (every point on one rank; any
+  // split: the points then move to the ranks whose slabs hold them); on one, all of them.
   Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Comm& comm = Comm::world());
-  // A run resumed from a snapshot's points (all of them, on every rank) and clock.
+  // A run resumed from a snapshot's points (shared out as above) and clock.
   Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock,
              const Comm& comm = Comm::world());
   Simulation(const Simulation&) = delete;
@@ -116,22 +117,25 @@ class Simulation {
   // 0, which gets it from the rank that holds the point; empty elsewhere). Every rank calls it.
   std::string describe(const StepStatus& status) const;
 
-  // Work per strip of every rank's points (decomposition.hpp), and the largest rank's share of it
-  // over the mean, for the benchmarks.
-  std::vector<std::int64_t> work_per_strip() const;
   // The largest rank's work over the mean, by the times the ranks measured at the last balance.
   double imbalance() const { return imbalance_; }
 
  private:
   void remember_unreached();  // the unreached boundaries into the clock, for snapshots
-  // MPI: this rank's slab of `slabs`: its points (from `all`, or moved between ranks), grid rows and halo.
+  // MPI: this rank's slab of `slabs`: its grid rows and halo (its points move there by hops).
   void take_slab(const Decomposition& slabs);
-  void keep_own_points(Particles<D>& all);
   int strip_of(double y) const;
   void migrate();     // points that crossed into a neighbour's slab move there
-  bool hop();         // one move of every point not home towards it; whether this rank sent any
+  // One move towards home of every point not home (of at most `most` each way); whether this rank
+  // sent any.
+  bool hop(std::size_t most = static_cast<std::size_t>(-1));
   void redistribute();  // after new slabs: every point home, however far
   void rebalance();   // new slabs when the work has drifted
+  // Per strip, over every rank: the points' weights (decomposition.hpp) and their number.
+  struct StripLoads {
+    std::vector<std::int64_t> weights, points;
+  };
+  StripLoads strip_loads() const;
   StepStatus agree(const StepStatus& mine) const;  // the same status on every rank: the lowest id's
   // The step's maximum signal and work mismatch over every rank, and its failure (a bad state before
   // a point off the grid, each of the lowest id).

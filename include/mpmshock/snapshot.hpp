@@ -6,7 +6,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <utility>
 
 #include "mpmshock/comm.hpp"
 #include "mpmshock/diagnostics.hpp"
@@ -52,15 +54,21 @@ void write_snapshot(const std::string& path, const Particles<D>& p, const Hugoni
 template <int D>
 struct Restart {
   RunState run;
+  std::size_t total_points = 0;  // the snapshot's: the whole impact's
+  std::size_t first_point = 0;   // `points` are those of ids [first_point, first_point + points.size())
   Particles<D> points;
 };
 
+// Which of a snapshot's n points (in id order) to read, [first, end), given its run state: an
+// MPI rank's share. Null: all of them.
+using PointChooser = std::function<std::pair<std::size_t, std::size_t>(const RunState&, std::size_t n)>;
+
 // Reads a snapshot back into the state it was written from (the next sample and snapshot times
-// are left to the caller, which derives them from the time as the time loop does). Throws
-// std::runtime_error naming the path and what is wrong (not a snapshot, a missing dataset, a bad
-// shape).
+// are left to the caller, which derives them from the time as the time loop does), with the points
+// `choose` picks. Throws SceneError naming the path and what is wrong (not a snapshot, a missing
+// dataset, a bad shape).
 template <int D>
-Restart<D> read_snapshot(const std::string& path);
+Restart<D> read_snapshot(const std::string& path, const PointChooser& choose = nullptr);
 
 // The time and point count of a snapshot, for indexing a run's files.
 struct SnapshotHeader {
