@@ -73,15 +73,10 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
   SnapshotOptions<D> options;
   options.compression = static_cast<int>(scene_.snapshot_compression);
   options.melt = melt_curve_of(scene_);
-  std::optional<Grid<D>> gathered;  // MPI: every rank's rows of the grid
+  std::optional<Grid<D>> gathered;  // every rank's active rows in the whole grid
   if (scene_.snapshot_grid) {
-    if (comm_.parallel()) {
-      gathered.emplace(sim.gathered_grid(options.grid_rows));
-      options.grid = &*gathered;
-    } else {
-      options.grid = &sim.grid();
-      options.grid_rows = sim.active_rows();
-    }
+    gathered.emplace(sim.gathered_grid(options.grid_rows));
+    options.grid = &*gathered;
   }
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   options.mirror = &mirror_;

@@ -187,30 +187,21 @@ std::pair<std::size_t, std::size_t> share_of_snapshot(const RunState& run, std::
   return {from + rank * simulated / ranks, from + (rank + 1) * simulated / ranks};
 }
 
-// Each rank checked its share of the points: the first rank's complaint is every rank's.
-void agree_on_complaint(const std::string& mine, const Comm& comm) {
-  if (!comm.parallel()) {
-    if (!mine.empty()) throw SceneError(mine);
-    return;
-  }
-  if (comm.max(mine.empty() ? 0.0 : 1.0) == 0.0) return;
-  std::string first;
-  for (const std::vector<char>& why : comm.gather(std::vector<char>(mine.begin(), mine.end())))
-    if (first.empty()) first.assign(why.begin(), why.end());
-  throw SceneError(first);  // rank 0 says it; the others end alike
-}
-
 template <int D>
 RunResult restart_from(const std::string& snapshot, const std::vector<std::string>& overrides,
                        const RunOptions& options) {
   const Comm& comm = Comm::world();
   // Each rank reads its share of the points (one rank: all of them); they move to their slabs' ranks.
-  Restart<D> r = read_snapshot<D>(snapshot, [&](const RunState& run, std::size_t n) {
-    return share_of_snapshot(run, n, snapshot, comm);
+  // A damaged row is one rank's to find; every rank stops on it.
+  Restart<D> r;
+  on_every_rank(comm, [&] {
+    r = read_snapshot<D>(snapshot, [&](const RunState& run, std::size_t n) {
+      return share_of_snapshot(run, n, snapshot, comm);
+    });
   });
   const Scene scene =
       parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, overrides));
-  check_fits<D>(scene, comm.size(), comm.node_ranks());
+  on_every_rank(comm, [&] { check_fits<D>(scene, comm.size(), comm.node_ranks()); });
   const double t0 = r.run.clock.time;
   if (!(scene.end_time > t0))
     throw SceneError(scene.where("end_time") + ": key 'end_time': the snapshot is at t = " + std::to_string(t0 * 1e9) +
@@ -222,13 +213,7 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   const fs::path dir = new_dir ? fs::path(scene.output_dir) : fs::absolute(snapshot).parent_path();
   const int index = r.run.schedule.snapshot_index;
   const GridGeometry<D> grid = build_grid_geometry<D>(scene);
-  std::string complaint;
-  try {
-    validate_restart(r, scene, grid, snapshot);
-  } catch (const SceneError& e) {
-    complaint = e.what();
-  }
-  agree_on_complaint(complaint, comm);
+  on_every_rank(comm, [&] { validate_restart(r, scene, grid, snapshot); });  // each rank its share
   std::vector<XdmfSnapshot> earlier;
   bool append = false;
   DirectoryLock lock;

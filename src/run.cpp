@@ -16,7 +16,7 @@ namespace {
 template <int D>
 RunResult run_new(const Scene& scene, const RunOptions& options) {
   const Comm& comm = Comm::world();
-  check_fits<D>(scene, comm.size(), comm.node_ranks());
+  on_every_rank(comm, [&] { check_fits<D>(scene, comm.size(), comm.node_ranks()); });  // each its machine
   // Each rank makes the points of its share of the rows only (on one rank: all of them).
   const InitialBuilder<D> builder(scene);  // SceneError on voids that cannot fit
   const std::vector<char> share = builder.share(comm.rank(), comm.size());

@@ -64,9 +64,10 @@ SizeEstimate estimate_size(const Scene& s) {
 template <int D>
 void check_fits(const Scene& s, int ranks, int node_ranks) {
   const SizeEstimate e = estimate_size<D>(s);
-  // A rank holds at most kMaxPointShare times its even share (decomposition.hpp).
-  const double share = static_cast<double>(node_ranks) *
-                       std::min(1.0, static_cast<double>(Decomposition::kMaxPointShare) / static_cast<double>(std::max(ranks, 1)));
+  // Each rank on this machine holds at most kMaxPointShare times its even share (decomposition.hpp),
+  // and all of them together never more than the whole.
+  const double share = std::min(1.0, static_cast<double>(Decomposition::kMaxPointShare * node_ranks) /
+                                         static_cast<double>(std::max(ranks, 1)));
   // The key that makes the size: the points' spacing, or the grid's margin (which grows with
   // end_time when it is automatic).
   const bool points_dominate = e.point_bytes >= e.node_bytes;

@@ -82,7 +82,7 @@ template <int D>
 Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock,
                           const Comm& comm)
     : comm_(&comm), whole_geo_(grid.whole()), slabs_(strip_count(grid)), model_(scene), points_(std::move(points)),
-      grid_(comm.parallel() ? GridGeometry<D>{} : grid), kernels_(kernels_for<D>(model_)),
+      kernels_(kernels_for<D>(model_)),
       effects_(effects_for<D>(model_, grid)), unreached_(points_.size()), clock_(clock) {
   // Each rank is given a share of the points (one rank: all of them), in id order.
   total_points_ = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(points_.size())));
@@ -91,6 +91,7 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
   if (model_.symmetry_plane && std::find(points_.body.begin(), points_.body.end(), Body::flyer) != points_.body.end())
     throw std::logic_error("symmetry = on simulates the target's points alone (build_initial_state gives them)");
   points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
+  if (!comm.parallel()) grid_ = Grid<D>(whole_geo_.holding(first_row_held(), whole_geo_.ny));
   if (comm.parallel()) {
     // Slabs of as many points each (the first step's end re-balances them by what it computes);
     // then every point moves to the rank whose slab holds it.
@@ -134,6 +135,15 @@ int Simulation<D>::first_strip_end_needed() const {
 }
 
 template <int D>
+int Simulation<D>::first_row_held() const {
+  // With a symmetry plane no point goes below y = 0, so no stencil reaches below its support's rows
+  // under the plane: the ghost rows further down are never used, and not held.
+  if (!model_.symmetry_plane) return 0;
+  const int plane_row = static_cast<int>(std::lround(-whole_geo_.y_min * whole_geo_.inv_h));
+  return std::max(0, plane_row - kernels_.support);
+}
+
+template <int D>
 int Simulation<D>::strip_of(double y) const {
   const int last_row = whole_geo_.ny - kernels_.support;  // as StripBins clamps a point off the grid
   const int row = std::clamp(kernels_.first_row(y, whole_geo_), 0, last_row);
@@ -144,7 +154,7 @@ template <int D>
 void Simulation<D>::take_slab(const Decomposition& slabs) {
   slabs_ = slabs;
   const int rank = comm_->rank(), first = slabs.first_strip(rank), end = slabs.end_strip(rank);
-  const int rows0 = first * StripBins::kRowsPerStrip;
+  const int rows0 = std::max(first * StripBins::kRowsPerStrip, first_row_held());
   const int rows1 = std::min(whole_geo_.ny, end * StripBins::kRowsPerStrip + kernels_.support - 1);
   grid_ = Grid<D>(whole_geo_.holding(rows0, rows1));
   halo_ = Halo<D>(*comm_, grid_.geo, first, end, StripBins::kRowsPerStrip, kernels_.support, rank > 0,
@@ -201,11 +211,11 @@ void Simulation<D>::migrate() {
 
 template <int D>
 void Simulation<D>::redistribute() {
-  // After new slabs points may be farther from home, and many: they hop, at most a batch each way
-  // at a time (what a hop holds in flight is bounded, not a share of the points), until every rank
-  // has only its own.
-  constexpr std::size_t kBatch = 65536;
-  while (comm_->sum(static_cast<std::int64_t>(hop(kBatch))) > 0) {
+  // After new slabs points may be farther from home, and many: they hop, at most an eighth of the
+  // rank's points (64 Ki at least) each way at a time, so that what is in flight stays a fraction of
+  // a share and the hops few, until every rank has only its own.
+  const std::size_t batch = std::max<std::size_t>(65536, points_.size() / 8);
+  while (comm_->sum(static_cast<std::int64_t>(hop(batch))) > 0) {
   }
 }
 
@@ -300,10 +310,11 @@ StepStatus Simulation<D>::step(double dt) {
   const double mpi_before = comm_->traffic().seconds;
   if (comm_->parallel()) rebalance();                                  // MPI: slabs to the work
   const PointRange reached = unreached_.computed(points_);             // all but what nothing has reached
-  if (!kernels_.bin(bins_, points_, reached, grid_.geo) ||             // strips for race-free scatter
-      (comm_->parallel() && !bins_within_slab())) {
-    // Moves check this, and restarts check their points: a bug. Every rank stops (main).
-    if (comm_->parallel()) throw std::logic_error("a material point outside its rank's grid rows at binning");
+  if (!kernels_.bin(bins_, points_, reached, grid_.geo) || !bins_within_slab()) {  // strips for race-free scatter
+    // Off the grid on one rank: a point left it. Off the rows held here (a rank's slab; below the
+    // symmetry plane's ghost rows): moves and restarts check this, so a bug. Every rank stops (main).
+    if (comm_->parallel() || !bins_within_slab())
+      throw std::logic_error("a material point outside the grid rows held here at binning");
     return {StepStatus::Code::left_grid, kNoPoint};
   }
   const RowRange rows = bins_.rows();
@@ -350,7 +361,7 @@ StepStatus Simulation<D>::step(double dt) {
 
 template <int D>
 bool Simulation<D>::bins_within_slab() const {
-  const RowRange rows = bins_.rows();
+  const RowRange rows = bins_.rows();  // empty when binning failed: then not a question of the slab
   return rows.end <= rows.begin ||
          (rows.begin >= grid_.geo.row0 && rows.end <= grid_.geo.row0 + grid_.geo.rows_held());
 }

@@ -85,31 +85,39 @@ cp -r whole-3 restart-whole
   fail "whole impact restarted on 2 ranks exited $?: $(tail -3 restart-whole.err)"
 same whole-1 restart-whole "3-rank whole impact restarted on 2 ranks"
 
-# A snapshot whose last point lies off the grid (unsealed, so that it is read at all): the rank
-# whose share holds it finds it; exit 2 with one message, the one one process gives.
-mkdir bad bad1
-cp porous-1/snapshot_00001.h5 bad/
-/usr/bin/python3 - bad/snapshot_00001.h5 <<'END'
+# A snapshot whose last point is bad (unsealed, so that it is read at all): the rank whose share
+# holds it finds it, when it reads the rows (a body that is neither) or when it checks the points
+# (off the grid); exit 2 with one message on every rank count, the one one process gives.
+for defect in position body; do
+  mkdir "bad-$defect"
+  cp porous-1/snapshot_00001.h5 "bad-$defect/"
+  /usr/bin/python3 - "bad-$defect/snapshot_00001.h5" "$defect" <<'END'
 import sys
 import h5py
 with h5py.File(sys.argv[1], "r+") as f:
-    x = f["/particles/position"]
-    x[x.shape[0] - 1, 1] = 1.0
+    if sys.argv[2] == "position":
+        x = f["/particles/position"]
+        x[x.shape[0] - 1, 1] = 1.0
+    else:
+        b = f["/particles/body"]
+        b[b.shape[0] - 1] = 7
 with open(sys.argv[1], "r+b") as f:
     f.write(b"unsealed")
 END
-cp bad/snapshot_00001.h5 bad1/
-"$bin" --restart bad1/snapshot_00001.h5 --quiet --force >/dev/null 2>bad1.err
-rc=$?
-[ "$rc" -eq 2 ] || fail "off-grid point on 1 rank: exit $rc, expected 2"
-"${mpirun[@]}" -np 3 "$bin" --restart bad/snapshot_00001.h5 --quiet --force >/dev/null 2>bad3.err
-rc=$?
-[ "$rc" -eq 2 ] || fail "off-grid point on 3 ranks: exit $rc, expected 2: $(tail -3 bad3.err)"
-complaint=$(grep -o "point [0-9]* lies outside the grid.*" bad1.err)
-[ -n "$complaint" ] && [ "$(grep -c "lies outside" bad3.err)" -eq 1 ] &&
-  [ "$(grep -o "point [0-9]* lies outside the grid.*" bad3.err)" = "$complaint" ] ||
-  fail "off-grid point on 3 ranks: not the one message one rank gives ($complaint): $(cat bad3.err)"
-echo "a bad point in one rank's share: exit 2, $complaint"
+  for np in 1 3; do
+    mkdir "bad-$defect-$np"
+    cp "bad-$defect/snapshot_00001.h5" "bad-$defect-$np/"
+    if [ "$np" -eq 1 ]; then "$bin" --restart "bad-$defect-$np/snapshot_00001.h5" --quiet --force >/dev/null 2>"bad-$defect-$np.err"
+    else "${mpirun[@]}" -np "$np" "$bin" --restart "bad-$defect-$np/snapshot_00001.h5" --quiet --force >/dev/null 2>"bad-$defect-$np.err"; fi
+    rc=$?
+    [ "$rc" -eq 2 ] || fail "bad $defect on $np rank(s): exit $rc, expected 2: $(tail -3 "bad-$defect-$np.err")"
+  done
+  complaint=$(grep -o "error: .*" "bad-$defect-1.err" | sed "s|bad-$defect-1/||")
+  [ -n "$complaint" ] && [ "$(grep -c "error: " "bad-$defect-3.err")" -eq 1 ] &&
+    [ "$(grep -o "error: .*" "bad-$defect-3.err" | sed "s|bad-$defect-3/||")" = "$complaint" ] ||
+    fail "bad $defect on 3 ranks: not the one message one rank gives ($complaint): $(cat "bad-$defect-3.err")"
+  echo "a bad $defect in one rank's share: exit 2, ${complaint:0:100}"
+done
 
 # A failure on one rank: the point that leaves the grid first is at the top, on the last rank. Every
 # rank stops at the same step with exit 3, the message names the point as one process does, and the

@@ -90,6 +90,29 @@ void on_root(const Comm& comm, F&& f) {
   throw AgreedIoError(failure.substr(1));
 }
 
+// Runs f on every rank, each on its own share (its points, its machine); a SceneError it throws on
+// any rank is thrown on every rank, with the lowest such rank's message, so that no rank waits for
+// one that gave up.
+template <class F>
+void on_every_rank(const Comm& comm, F&& f) {
+  if (!comm.parallel()) {
+    f();
+    return;
+  }
+  std::string complaint;
+  try {
+    f();
+  } catch (const SceneError& e) {
+    complaint = e.what();
+  }
+  if (comm.max(complaint.empty() ? 0.0 : 1.0) == 0.0) return;
+  std::string first;
+  for (const std::vector<char>& why : comm.gather(std::vector<char>(complaint.begin(), complaint.end())))
+    if (first.empty()) first.assign(why.begin(), why.end());
+  comm.broadcast(first);
+  throw SceneError(first);
+}
+
 // The rows of a CSV (the header is not a row) whose time, the first column, is after t.
 std::size_t count_rows_after(const fs::path& path, double t);
 // Keeps the header and the rows that are not after t; rewrites the file atomically. Returns the

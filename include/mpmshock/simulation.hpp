@@ -99,7 +99,8 @@ class Simulation {
   Particles<D> all_particles() const { return gather_points(points_, *comm_); }
   // The points simulated on all ranks together.
   std::size_t total_points() const { return total_points_; }
-  // This rank's grid rows (all of them on one rank).
+  // This rank's grid rows (on one rank all of them, but for the unused ghost rows below a symmetry
+  // plane).
   const Grid<D>& grid() const { return grid_; }
   const GridGeometry<D>& whole_grid() const { return whole_geo_; }
   const Model& model() const { return model_; }
@@ -107,7 +108,7 @@ class Simulation {
   const Decomposition& decomposition() const { return slabs_; }
   // Node rows the last step used here; the grid's fields outside them are stale.
   RowRange active_rows() const { return bins_.rows(); }
-  // MPI: the nodal mass and velocity of every rank's active rows in one grid at rank 0, and in
+  // The nodal mass and velocity of every rank's active rows in one whole grid at rank 0, and in
   // `rows` the rows they span (for a snapshot's /grid).
   Grid<D> gathered_grid(RowRange& rows) const;
   // This rank's points the steps compute; the others nothing has reached yet (unreached.hpp).
@@ -142,6 +143,7 @@ class Simulation {
   StepStatus agree_on(StressUpdateResult& update, std::size_t left, const StepStatus& effect);
   bool bins_within_slab() const;  // MPI: the step's points touch only this rank's rows
   int first_strip_end_needed() const;
+  int first_row_held() const;  // the lowest node row any point can touch
   StepStatus with_id(StepStatus s) const;  // an effect's storage index as the point's id
   void describe_point(std::ostream& out, StepStatus::Code code, std::size_t p, std::size_t id) const;  // rank 0's slab must reach this strip (symmetry_plane.hpp)
   const Comm* comm_;
