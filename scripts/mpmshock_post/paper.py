@@ -23,7 +23,8 @@ import matplotlib
 from .errors import PostError, argument_type
 from .paper_figures import CAPTIONS, CampaignRuns, make_figures, resolution
 from .paper_runs import (FIGURES, QUICK_DEFAULT_WIDTH, QUICK_PAPER_T_CASES, QUICK_SETTINGS, QUICK_WIDTH,
-                         TEMPERATURE_MODELS, cases_for, execute_all, plan_runs, say)
+                         FIGURE_CASES, SNAPSHOT_FIGURES, TEMPERATURE_MODELS, cases_for, execute_all, plan_runs,
+                         save_record, say, seed_from_record)
 from .reader import Run
 from .scene_input import key_defaults, mpmshock_binary
 
@@ -71,7 +72,8 @@ def build_parser():
         epilog=quick_text() + " It took 5 to 6 minutes and 3 GB on the project's shared 2-core machine (the "
         "budget is 15 minutes); "
         "--jobs 2 is faster there. The full campaign (configs/paper as written: 5 and 10 um cells, 2 mm wide) "
-        "takes roughly 7 hours per temperature model there (estimated from its point-steps, not measured).")
+        "takes 6 to 8 hours there on 2 MPI ranks, one run per case for both temperature models (README): "
+        "--records carries it over several sittings.")
     parser.add_argument("--out", required=True, type=Path, metavar="DIR", help="output directory")
     parser.add_argument("--quick", action="store_true", help="reduced resolution and width (see below)")
     parser.add_argument("--fig", type=argument_type(_figures), default=list(FIGURES), metavar="N[,N...]",
@@ -80,6 +82,11 @@ def build_parser():
                         help="runs at once, each on max(1, cores // (J R)) threads (default 1)")
     parser.add_argument("--ranks", type=argument_type(_jobs), default=1, metavar="R",
                         help="MPI ranks per run, through mpirun (default 1: no MPI); the results are the same bits")
+    parser.add_argument("--records", type=Path, metavar="RECORDS",
+                        help="keep each finished run's record (scene, summary, CSVs: no snapshots) in RECORDS, and "
+                        "take a run missing from DIR/runs from its record there, as finished: a campaign longer "
+                        "than one sitting goes on from the last (a case whose snapshots a requested figure reads, "
+                        "for Fig. 1, 3, 6 and 11, runs instead)")
     parser.add_argument("--temperature-models", type=argument_type(_models), default=list(TEMPERATURE_MODELS),
                         metavar="energy,paper", help="temperature models to run (default both; paper needs the "
                         "scene key temperature_model and is skipped with a message where mpmshock lacks it)")
@@ -184,8 +191,16 @@ def main(argv=None):
                 "paper model")
         planned = plan_runs(cases_for(args.fig), models, out / "runs", args.quick, combined)
         say(f"{len(planned)} runs for figure(s) {','.join(map(str, args.fig))}" + (" (quick)" if args.quick else ""))
+        if args.records is not None:
+            drawn_from_snapshots = {case for n in args.fig if n in SNAPSHOT_FIGURES for case in FIGURE_CASES[n]}
+            for run in planned:
+                if run.case not in drawn_from_snapshots and seed_from_record(run, args.records.resolve()):
+                    say(f"{run.name}: taken from its record in {args.records} (no snapshots)")
         records = execute_all(planned, binary, defaults, args.jobs, args.ranks)
         say(f"runs done after {time.monotonic() - started:.0f} s")
+        if args.records is not None:
+            kept = [run.name for run in planned if save_record(run, args.records.resolve())]
+            say(f"records of {', '.join(kept) or 'no run'} kept in {args.records}")
 
         made = make_figures(args.fig, CampaignRuns(out / "runs", args.quick), out)
         say(f"figures {', '.join(p.name for p in made)} written after {time.monotonic() - started:.0f} s")

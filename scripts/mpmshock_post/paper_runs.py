@@ -7,10 +7,17 @@ only the temperature it reports, so where the simulator has the scene key `paper
 one run reports both models (`paper_temperature = on`, read back as the paper model's run by
 reader.PaperTemperatureRun); with an older simulator the paper model runs again into
 DIR/runs/<case>-paperT/ with `temperature_model = paper`.
+
+A campaign longer than one sitting keeps its finished runs' records (--records DIR: each run's scene,
+summary and CSV time series, a few hundred kB, without its snapshots) and starts the next sitting
+from them: a run missing from DIR/runs is taken from its record, and is then reused as finished. The
+figures and comparison rows that read the time series need nothing more; a case whose snapshots a
+requested figure reads (Fig. 1, 3, 6 and 11) runs instead.
 """
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -31,6 +38,8 @@ FIGURE_CASES = {1: ("base",), 2: ("base",), 3: ("base",), 4: ("base",), 5: ("bas
                 7: VOID_SIZE_CASES, 8: VOID_SIZE_CASES, 9: ("delta1.4",), 10: ("delta1.4",), 11: ("delta1.4",),
                 12: VELOCITY_CASES, 13: POROSITY_CASES}
 FIGURES = tuple(FIGURE_CASES)
+# The figures whose plots read snapshots (fields, histograms), not only the time series.
+SNAPSHOT_FIGURES = (1, 3, 6, 11)
 
 # --quick: the same bodies (5 mm + 5 mm), end times, outputs and physics, on a coarser grid and a
 # narrower column. 20 um cells are the shipped base config's resolution (docs/accuracy.md: plateau
@@ -116,6 +125,40 @@ def plan_runs(cases, models, runs_dir, quick, combined=False):
                 overrides.append("paper_temperature=on")
             runs.append(PlannedRun(case, model, scene, overrides, runs_dir / run_name(case, model)))
     return runs
+
+
+# What a run's record keeps: everything but its snapshots (and the voids, which nothing here reads).
+RECORD_FILES = ("scene.txt", "summary.json", "regions.csv", "conservation.csv", "probes.csv")
+
+
+def save_record(run, records_dir):
+    """Copies a finished run's record into records_dir/<name>/ (and its timing, beside); returns
+    whether there was one to save."""
+    if not (run.run_dir / "summary.json").is_file() or not (run.run_dir / "regions.csv").is_file():
+        return False
+    kept = records_dir / run.name
+    kept.mkdir(parents=True, exist_ok=True)
+    for name in RECORD_FILES:
+        if (run.run_dir / name).is_file():
+            shutil.copyfile(run.run_dir / name, kept / name)
+    if run.record.is_file():
+        shutil.copyfile(run.record, records_dir / run.record.name)
+    return True
+
+
+def seed_from_record(run, records_dir):
+    """A run that DIR/runs lacks, made from its record in records_dir where there is one; returns
+    whether it was."""
+    kept = records_dir / run.name
+    if (run.run_dir / "summary.json").exists() or not (kept / "summary.json").is_file():
+        return False
+    run.run_dir.mkdir(parents=True, exist_ok=True)
+    for name in RECORD_FILES:
+        if (kept / name).is_file():
+            shutil.copyfile(kept / name, run.run_dir / name)
+    if (records_dir / run.record.name).is_file():
+        shutil.copyfile(records_dir / run.record.name, run.record)
+    return True
 
 
 def last_snapshot(run_dir):

@@ -230,3 +230,41 @@ def test_plot_options_for_the_paper(finished_run):
     assert abs((b.get_ydata() - a.get_ydata()).mean() - 0.1) < 1e-12
     with pytest.raises(PostError, match="one value per run"):
         plot_compare([run, run], quantities=["density"], offsets={"density": [0.1]})
+
+
+def test_records_carry_a_campaign_to_the_next_sitting(tmp_path):
+    """--records keeps each finished run's scene, summary and CSVs; a later campaign in a new DIR
+    takes the runs from them as finished, draws the figures of the time series from them, and says
+    so; a case whose snapshots a requested figure reads runs instead."""
+    scenes = tmp_path / "scenes"
+    scenes.mkdir()
+    for case in CASES:
+        (scenes / f"{case}.scene").write_text(TINY_SCENE)
+    records = tmp_path / "records"
+    first = reproduce("--out", tmp_path / "first", "--fig", "7,12", "--records", records, scenes=scenes)
+    assert first.returncode == 0, first.stderr
+    for case in ("void_r25", "base", "void_r100", "delta1.4_v500", "delta1.4", "delta1.4_v1500", "delta1.4_v2000"):
+        kept = {p.name for p in (records / case).iterdir()}  # probes.csv where the scene has probes
+        assert {"scene.txt", "summary.json", "regions.csv", "conservation.csv"} <= kept <= set(paper_runs.RECORD_FILES)
+        assert (records / f"{case}.json").is_file()
+    assert not list(records.rglob("*.h5"))
+
+    later = tmp_path / "later"
+    again = reproduce("--out", later, "--fig", "7,12", "--records", records, scenes=scenes)
+    assert again.returncode == 0, again.stderr
+    assert "base: taken from its record" in again.stderr and "base: reused" in again.stderr, again.stderr
+    assert "started" not in again.stderr, again.stderr
+    assert not list((later / "runs").rglob("*.h5"))
+    for number in (7, 12):
+        assert (later / f"fig{number:02d}.png").stat().st_size > 10_000
+    rows = [r for r in csv.DictReader(open(later / "comparison.csv")) if r["figure"] in ("Fig 7", "Fig 12")]
+    assert rows and not any(r["note"].startswith("not run") for r in rows), rows
+    # The runs' wall times are the ones the first sitting measured.
+    assert json.loads((later / "runs/base.json").read_text()) == json.loads((records / "base.json").read_text())
+
+    # Fig. 3 reads the base case's snapshots: in a new DIR that case runs, its record notwithstanding.
+    fresh = tmp_path / "fresh"
+    drawn = reproduce("--out", fresh, "--fig", "3", "--records", records, scenes=scenes)
+    assert drawn.returncode == 0, drawn.stderr
+    assert "base: started (fresh)" in drawn.stderr and "taken from its record" not in drawn.stderr, drawn.stderr
+    assert (fresh / "fig03.png").is_file() and list((fresh / "runs/base").glob("snapshot_*.h5"))
