@@ -108,6 +108,7 @@ void unpack_points(Particles<D>& p, const std::vector<char>& bytes) {
   if (bytes.size() < sizeof(std::uint64_t)) return;
   std::uint64_t count = 0;
   std::memcpy(&count, bytes.data(), sizeof count);
+  if (count == 0) return;
   std::size_t at = sizeof count;
   p.for_each_member([&](auto field) {
     auto& values = p.*field;

@@ -21,13 +21,13 @@ namespace {
 // Every rank's ids, in increasing order, at every rank.
 std::vector<std::uint32_t> ids_of_all_ranks(const std::vector<std::uint32_t>& mine, const Comm& comm) {
   if (!comm.parallel()) return mine;
-  std::vector<char> bytes(mine.size() * sizeof(std::uint32_t));
-  std::memcpy(bytes.data(), mine.data(), bytes.size());
+  const auto* first = reinterpret_cast<const char*>(mine.data());
   std::vector<char> all;
-  for (const std::vector<char>& part : comm.gather(bytes)) all.insert(all.end(), part.begin(), part.end());
+  for (const std::vector<char>& part : comm.gather(std::vector<char>(first, first + mine.size() * sizeof(std::uint32_t))))
+    all.insert(all.end(), part.begin(), part.end());
   comm.broadcast(all);
   std::vector<std::uint32_t> ids(all.size() / sizeof(std::uint32_t));
-  std::memcpy(ids.data(), all.data(), all.size());
+  if (!all.empty()) std::memcpy(ids.data(), all.data(), all.size());
   std::sort(ids.begin(), ids.end());
   return ids;
 }
