@@ -47,11 +47,6 @@ Comm& Comm::world() {
   return comm;
 }
 
-const Comm& Comm::single() {
-  static const Comm comm;
-  return comm;
-}
-
 bool Comm::built_with_mpi() {
 #ifdef MPMSHOCK_HAVE_MPI
   return true;

@@ -121,17 +121,6 @@ void unpack_points(Particles<D>& p, const std::vector<char>& bytes) {
 }
 
 template <int D>
-void keep_points(Particles<D>& p, const std::vector<char>& keep) {
-  p.for_each_member([&](auto field) {
-    auto& values = p.*field;
-    std::size_t to = 0;
-    for (std::size_t q = 0; q < values.size(); ++q)
-      if (keep[q]) values[to++] = values[q];
-    values.resize(to);
-  });
-}
-
-template <int D>
 void merge_points(Particles<D>& p, const std::vector<char>& keep, const std::vector<std::vector<char>>& arrivals) {
   const std::size_t before = p.size();
   std::vector<std::size_t> bounds{before};  // the sorted runs: the kept points, then each batch
@@ -209,7 +198,6 @@ Particles<D> gather_points(const Particles<D>& mine, const Comm& comm) {
 #define MPMSHOCK_INSTANTIATE(D)                                                                     \
   template std::vector<char> pack_points<D>(const Particles<D>&, const std::vector<std::size_t>&); \
   template void unpack_points<D>(Particles<D>&, const std::vector<char>&);                       \
-  template void keep_points<D>(Particles<D>&, const std::vector<char>&);                         \
   template void merge_points<D>(Particles<D>&, const std::vector<char>&, const std::vector<std::vector<char>>&); \
   template void sort_by_id<D>(Particles<D>&);                                                    \
   template std::size_t index_of_id<D>(const Particles<D>&, std::uint32_t);                       \

@@ -52,6 +52,19 @@ void check_plausible_size(hid_t set, double bytes, const char* path) {
     throw std::runtime_error(std::string("dataset ") + path + " claims more values than the file holds");
 }
 
+// Selects rows [first, first + rows) of a dataset's space `dims` in `file_space` (each with its trailing
+// dimensions whole); returns the memory space of those rows.
+Handle select_rows(hid_t file_space, const std::vector<hsize_t>& dims, hsize_t first, hsize_t rows,
+                   const std::string& name) {
+  std::vector<hsize_t> start(dims.size(), 0), count = dims;
+  start[0] = first;
+  count[0] = rows;
+  check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "select rows of " + name);
+  return Handle(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose,
+                "make the memory space of " + name);
+}
+
 template <class T>
 std::vector<T> read_rows(hid_t loc, const char* path, hid_t mem_type, std::size_t expected_rows,
                          const std::vector<hsize_t>& tail, Rows rows) {
@@ -66,19 +79,13 @@ std::vector<T> read_rows(hid_t loc, const char* path, hid_t mem_type, std::size_
   double count_d = 1.0;
   for (hsize_t d : dims) count_d *= static_cast<double>(d);
   check_plausible_size(set.get(), count_d * sizeof(T), path);
-  // Rows [first, end) of the dataset's, and of each the trailing dimensions whole.
+  // Rows [first, end) of the dataset's (cut to those it has).
   const hsize_t first = std::min<hsize_t>(rows.first, dims[0]), end = std::clamp<hsize_t>(rows.end, first, dims[0]);
-  std::vector<hsize_t> start(dims.size(), 0), count = dims;
-  start[0] = first;
-  count[0] = end - first;
-  std::size_t values = 1;
-  for (hsize_t c : count) values *= static_cast<std::size_t>(c);
+  std::size_t values = end - first;
+  for (std::size_t k = 1; k < dims.size(); ++k) values *= static_cast<std::size_t>(dims[k]);
   std::vector<T> out(values);
   if (values == 0) return out;
-  check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
-        std::string("select rows of ") + path);
-  Handle memory(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose,
-                std::string("make a memory space for ") + path);
+  const Handle memory = select_rows(space.get(), dims, first, end - first, path);
   check(H5Dread(set.get(), mem_type, memory.get(), space.get(), H5P_DEFAULT, out.data()), std::string("read ") + path);
   return out;
 }
@@ -134,14 +141,8 @@ RowWriter::RowWriter(hid_t group, const char* name, hid_t mem_type, std::vector<
 
 void RowWriter::write(hsize_t first, hsize_t rows, const void* data) {
   if (rows == 0) return;
-  std::vector<hsize_t> start(dims_.size(), 0), count = dims_;
-  start[0] = first;
-  count[0] = rows;
   Handle file_space(H5Dget_space(set_.get()), H5Sclose, "read the shape of " + name_);
-  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
-        "select rows of " + name_);
-  Handle memory(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose,
-                "make the memory space of " + name_);
+  const Handle memory = select_rows(file_space.get(), dims_, first, rows, name_);
   check(H5Dwrite(set_.get(), type_, memory.get(), file_space.get(), H5P_DEFAULT, data), "write " + name_);
 }
 

@@ -268,9 +268,7 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
   MirrorImage<D> mirror;
   Probes<D> probes;
   if (!scene.probes.empty() || scene.symmetry == Symmetry::on) {
-    const InitialBuilder<D> builder(scene);
-    const std::vector<char> share = builder.share(comm.rank(), comm.size());
-    const InitialState<D> initial = builder.build(&share);
+    const InitialState<D> initial = InitialBuilder<D>(scene).build_share(comm.rank(), comm.size());
     probes = probes_of(scene, initial, comm);
     mirror = initial.mirror;
   }

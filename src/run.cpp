@@ -18,9 +18,7 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
   const Comm& comm = Comm::world();
   on_every_rank(comm, [&] { check_fits<D>(scene, comm.size(), comm.node_ranks()); });  // each its machine
   // Each rank makes the points of its share of the rows only (on one rank: all of them).
-  const InitialBuilder<D> builder(scene);  // SceneError on voids that cannot fit
-  const std::vector<char> share = builder.share(comm.rank(), comm.size());
-  InitialState<D> initial = builder.build(comm.parallel() ? &share : nullptr);
+  InitialState<D> initial = InitialBuilder<D>(scene).build_share(comm.rank(), comm.size());  // SceneError on voids that cannot fit
   if (comm.root())
     for (const std::string& w : scene_warnings(scene)) std::fprintf(stderr, "mpmshock: warning: %s\n", w.c_str());
   RunState run;

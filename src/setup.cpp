@@ -166,14 +166,8 @@ InitialBuilder<D>::InitialBuilder(const Scene& s) : scene_(s) {
   target_rows_ = points_per_row(target_, target_voids_);
   // The rows simulated, in the order their points are made: with symmetry = on the target's alone.
   if (s.symmetry != Symmetry::on)
-    for (int j = 0; j < flyer_.rows; ++j) {
-      row_y_.push_back(flyer_.y0 + (j + 0.5) * a);
-      row_points_.push_back(flyer_rows_[static_cast<std::size_t>(j)]);
-    }
-  for (int j = 0; j < target_.rows; ++j) {
-    row_y_.push_back(target_.y0 + (j + 0.5) * a);
-    row_points_.push_back(target_rows_[static_cast<std::size_t>(j)]);
-  }
+    row_points_ = flyer_rows_;
+  row_points_.insert(row_points_.end(), target_rows_.begin(), target_rows_.end());
 }
 
 template <int D>
@@ -202,7 +196,8 @@ InitialState<D> InitialBuilder<D>::build(const std::vector<char>* keep) const {
 }
 
 template <int D>
-std::vector<char> InitialBuilder<D>::share(int rank, int ranks) const {
+InitialState<D> InitialBuilder<D>::build_share(int rank, int ranks) const {
+  if (ranks <= 1) return build();
   std::size_t total = 0;
   for (std::size_t n : row_points_) total += n;
   std::vector<char> keep(row_points_.size(), 0);
@@ -216,7 +211,7 @@ std::vector<char> InitialBuilder<D>::share(int rank, int ranks) const {
     keep[r] = owner == rank;
     before += row_points_[r];
   }
-  return keep;
+  return build(&keep);
 }
 
 template <int D>

@@ -310,13 +310,13 @@ StepStatus Simulation<D>::step(double dt) {
   const double mpi_before = comm_->traffic().seconds;
   if (comm_->parallel()) rebalance();                                  // MPI: slabs to the work
   const PointRange reached = unreached_.computed(points_);             // all but what nothing has reached
-  if (!kernels_.bin(bins_, points_, reached, grid_.geo) || !bins_within_slab()) {  // strips for race-free scatter
-    // Off the grid on one rank: a point left it. Off the rows held here (a rank's slab; below the
-    // symmetry plane's ghost rows): moves and restarts check this, so a bug. Every rank stops (main).
-    if (comm_->parallel() || !bins_within_slab())
-      throw std::logic_error("a material point outside the grid rows held here at binning");
+  // Off the grid on one rank: a point left it. Off the rows held here (an MPI rank's slab, or the
+  // ghost rows below a symmetry plane): moves and restarts check this, so a bug. Every rank stops (main).
+  if (!kernels_.bin(bins_, points_, reached, grid_.geo)) {             // strips for race-free scatter
+    if (comm_->parallel()) throw std::logic_error("a material point outside the grid's rows at binning");
     return {StepStatus::Code::left_grid, kNoPoint};
   }
+  if (!bins_within_slab()) throw std::logic_error("a material point outside the grid rows held here at binning");
   const RowRange rows = bins_.rows();
   const bool musl = model_.scheme == UpdateScheme::musl;
   grid_.reset(rows);                                                   // reset grid
@@ -361,7 +361,7 @@ StepStatus Simulation<D>::step(double dt) {
 
 template <int D>
 bool Simulation<D>::bins_within_slab() const {
-  const RowRange rows = bins_.rows();  // empty when binning failed: then not a question of the slab
+  const RowRange rows = bins_.rows();
   return rows.end <= rows.begin ||
          (rows.begin >= grid_.geo.row0 && rows.end <= grid_.geo.row0 + grid_.geo.rows_held());
 }

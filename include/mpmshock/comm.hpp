@@ -20,8 +20,6 @@ class Comm {
  public:
   // The world of the run: all the ranks mpirun started (after init), else this process alone.
   static Comm& world();
-  // This process alone, whatever the world: for work every rank does in full (the set-up's totals).
-  static const Comm& single();
   // Starts MPI when the process was started by mpirun (or another MPI launcher); a process started
   // alone stays a single rank without touching MPI. Returns true when MPI runs.
   static bool init(int* argc, char*** argv);

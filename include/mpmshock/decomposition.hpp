@@ -67,9 +67,6 @@ std::vector<char> pack_points(const Particles<D>& p, const std::vector<std::size
 // Appends the points of `bytes` (made by pack_points from the same layout).
 template <int D>
 void unpack_points(Particles<D>& p, const std::vector<char>& bytes);
-// Keeps the points whose flag is set, in their order.
-template <int D>
-void keep_points(Particles<D>& p, const std::vector<char>& keep);
 // The points (in id order) that stay (their flag set) and those that arrive (each batch made by
 // pack_points from points in id order), merged into id order in one pass over each field.
 template <int D>

@@ -74,27 +74,24 @@ GridGeometry<D> build_grid_geometry(const Scene& scene);
 template <int D>
 InitialState<D> build_initial_state(const Scene& scene);
 
-// The same in two steps, for MPI ranks that each make only their slab's points: first the lattices
-// and voids, and the y and number of points of every lattice row the run simulates (in the order
-// the points are made: the flyer's bottom row first, then the target's); then the points of the
-// rows a rank keeps, each with the id it has in the whole.
+// The same in two steps, for MPI ranks that each make only their share of the points: first the
+// lattices and voids, and the number of points of every lattice row the run simulates (in the order
+// the points are made: the flyer's bottom row first, then the target's); then the points of a
+// rank's rows, each with the id it has in the whole.
 template <int D>
 class InitialBuilder {
  public:
   explicit InitialBuilder(const Scene& scene);  // throws SceneError as build_initial_state
-  const std::vector<double>& row_y() const { return row_y_; }
-  const std::vector<std::size_t>& row_points() const { return row_points_; }
   // The initial state with the points of the rows whose `keep` flag is set (null: all of them).
   InitialState<D> build(const std::vector<char>* keep = nullptr) const;
-  // Rank `rank` of `ranks`' share of the rows: consecutive rows holding about as many points as
-  // every other rank's (the flags for build()).
-  std::vector<char> share(int rank, int ranks) const;
+  // The initial state with rank `rank` of `ranks`' share of the points: consecutive rows holding
+  // about as many points as every other rank's (one rank: all of them).
+  InitialState<D> build_share(int rank, int ranks) const;
 
  private:
   const Scene& scene_;
   Lattice target_, flyer_;
   VoidLayout target_voids_, flyer_voids_;
-  std::vector<double> row_y_;
   std::vector<std::size_t> row_points_;
   std::vector<std::size_t> flyer_rows_, target_rows_;  // points per lattice row of each body
 };

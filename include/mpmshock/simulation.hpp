@@ -141,7 +141,7 @@ class Simulation {
   // The step's maximum signal and work mismatch over every rank, and its failure (a bad state before
   // a point off the grid, each of the lowest id).
   StepStatus agree_on(StressUpdateResult& update, std::size_t left, const StepStatus& effect);
-  bool bins_within_slab() const;  // MPI: the step's points touch only this rank's rows
+  bool bins_within_slab() const;  // the step's points touch only the rows held here
   int first_strip_end_needed() const;
   int first_row_held() const;  // the lowest node row any point can touch
   StepStatus with_id(StepStatus s) const;  // an effect's storage index as the point's id
