@@ -24,7 +24,7 @@ from .errors import PostError, argument_type
 from .paper_figures import CAPTIONS, CampaignRuns, make_figures, resolution
 from .paper_runs import (FIGURES, QUICK_DEFAULT_WIDTH, QUICK_PAPER_T_CASES, QUICK_SETTINGS, QUICK_WIDTH,
                          FIGURE_CASES, SNAPSHOT_FIGURES, TEMPERATURE_MODELS, cases_for, execute_all, plan_runs,
-                         save_record, say, seed_from_record)
+                         say, seed_from_record)
 from .reader import Run
 from .scene_input import key_defaults, mpmshock_binary
 
@@ -83,10 +83,10 @@ def build_parser():
     parser.add_argument("--ranks", type=argument_type(_jobs), default=1, metavar="R",
                         help="MPI ranks per run, through mpirun (default 1: no MPI); the results are the same bits")
     parser.add_argument("--records", type=Path, metavar="RECORDS",
-                        help="keep each finished run's record (scene, summary, CSVs: no snapshots) in RECORDS, and "
-                        "take a run missing from DIR/runs from its record there, as finished: a campaign longer "
-                        "than one sitting goes on from the last (a case whose snapshots a requested figure reads, "
-                        "for Fig. 1, 3, 6 and 11, runs instead)")
+                        help="keep each finished run's record (scene, summary, CSVs: no snapshots) in RECORDS as "
+                        "it finishes, and take a run missing from DIR/runs from its record there, as finished: a "
+                        "campaign longer than one sitting goes on from the last (a case whose snapshots a requested "
+                        "figure reads, for Fig. 1, 3, 6 and 11, runs instead)")
     parser.add_argument("--temperature-models", type=argument_type(_models), default=list(TEMPERATURE_MODELS),
                         metavar="energy,paper", help="temperature models to run (default both; paper needs the "
                         "scene key temperature_model and is skipped with a message where mpmshock lacks it)")
@@ -196,11 +196,9 @@ def main(argv=None):
             for run in planned:
                 if run.case not in drawn_from_snapshots and seed_from_record(run, args.records.resolve()):
                     say(f"{run.name}: taken from its record in {args.records} (no snapshots)")
-        records = execute_all(planned, binary, defaults, args.jobs, args.ranks)
+        records = execute_all(planned, binary, defaults, args.jobs, args.ranks,
+                              args.records.resolve() if args.records is not None else None)
         say(f"runs done after {time.monotonic() - started:.0f} s")
-        if args.records is not None:
-            kept = [run.name for run in planned if save_record(run, args.records.resolve())]
-            say(f"records of {', '.join(kept) or 'no run'} kept in {args.records}")
 
         made = make_figures(args.fig, CampaignRuns(out / "runs", args.quick), out)
         say(f"figures {', '.join(p.name for p in made)} written after {time.monotonic() - started:.0f} s")

@@ -8,11 +8,12 @@ one run reports both models (`paper_temperature = on`, read back as the paper mo
 reader.PaperTemperatureRun); with an older simulator the paper model runs again into
 DIR/runs/<case>-paperT/ with `temperature_model = paper`.
 
-A campaign longer than one sitting keeps its finished runs' records (--records DIR: each run's scene,
-summary and CSV time series, a few hundred kB, without its snapshots) and starts the next sitting
-from them: a run missing from DIR/runs is taken from its record, and is then reused as finished. The
-figures and comparison rows that read the time series need nothing more; a case whose snapshots a
-requested figure reads (Fig. 1, 3, 6 and 11) runs instead.
+A campaign longer than one sitting keeps its finished runs' records (--records DIR: each run's
+scene, summary and CSV time series, a few hundred kB, without its snapshots, saved as each run
+finishes) and starts the next sitting from them: a run missing from DIR/runs is taken from its
+record, and is then reused as finished. The figures and comparison rows that read the time series
+need nothing more; a case whose snapshots a requested figure reads (Fig. 1, 3, 6 and 11) runs
+instead.
 """
 
 import json
@@ -254,16 +255,23 @@ def read_record(run):
         return {}
 
 
-def execute_all(runs, binary, defaults, jobs, ranks=1):
+def execute_all(runs, binary, defaults, jobs, ranks=1, records_dir=None):
     """Every run, `jobs` at a time, each on `ranks` MPI ranks of max(1, cores // (jobs ranks)) threads;
-    name -> record. After a
-    failure the runs not yet started are cancelled, those under way finish, and the first failure
-    is raised."""
+    name -> record. With records_dir, each finished run's record is saved there as soon as it
+    finishes, so that a campaign stopped hours in keeps what it had done. After a failure the runs
+    not yet started are cancelled, those under way finish, and the first failure is raised."""
     cores = len(os.sched_getaffinity(0))
     threads = max(1, cores // (jobs * ranks))
     records, failures = {}, []
+
+    def run_and_keep(run):
+        record = execute(run, binary, defaults, threads, ranks)
+        if records_dir is not None and save_record(run, records_dir) and record.get("action") != "reused":
+            say(f"{run.name}: record kept in {records_dir}")
+        return record
+
     with ThreadPoolExecutor(max_workers=jobs) as pool:
-        futures = {pool.submit(execute, run, binary, defaults, threads, ranks): run for run in runs}
+        futures = {pool.submit(run_and_keep, run): run for run in runs}
         for future, run in futures.items():
             if future.cancelled():
                 continue

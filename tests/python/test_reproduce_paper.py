@@ -262,6 +262,15 @@ def test_records_carry_a_campaign_to_the_next_sitting(tmp_path):
     # The runs' wall times are the ones the first sitting measured.
     assert json.loads((later / "runs/base.json").read_text()) == json.loads((records / "base.json").read_text())
 
+    # A record is kept as soon as its run finishes: a sitting whose last run fails keeps the others'.
+    (scenes / "void_r100.scene").write_text(TINY_SCENE + "porosity = 0.5\n")
+    broken_records = tmp_path / "broken-records"
+    broken = reproduce("--out", tmp_path / "broken", "--fig", "7", "--records", broken_records, scenes=scenes)
+    assert broken.returncode != 0 and "void_r100" in broken.stderr, broken.stderr
+    assert "void_r25: record kept" in broken.stderr and "base: record kept" in broken.stderr, broken.stderr
+    assert sorted(p.name for p in broken_records.iterdir()) == ["base", "base.json", "void_r25", "void_r25.json"]
+    (scenes / "void_r100.scene").write_text(TINY_SCENE)
+
     # Fig. 3 reads the base case's snapshots: in a new DIR that case runs, its record notwithstanding.
     fresh = tmp_path / "fresh"
     drawn = reproduce("--out", fresh, "--fig", "3", "--records", records, scenes=scenes)
