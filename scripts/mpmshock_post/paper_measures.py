@@ -330,6 +330,19 @@ class CaseRun:
         """The full-compaction porous Hugoniot state of this case (hugoniot.porous_shock)."""
         return porous_shock(self.velocity, self.porosity, self.material)
 
+    def band_porosity(self, region=BOTTOM):
+        """delta of the material a region holds at t = 0: the solid density over its band density
+        (macro_density, voids counted) in the first sample. With few voids in the region this is
+        not the body's porosity: the layout samples it."""
+        data = self.regions.get(region)
+        if data is None or len(data["time"]) == 0 or data["time"][0] != 0.0:
+            raise NotMeasured(f"{self.case}: {region} has no sample at t = 0")
+        return self.material.density / float(data["macro_density"][0])
+
+    def band_hugoniot(self, region=BOTTOM):
+        """The full-compaction porous Hugoniot state at the region's own initial porosity."""
+        return porous_shock(self.velocity, self.band_porosity(region), self.material)
+
     def region_top(self, region=BOTTOM):
         """Upper edge y1 + h of a bottom region [m]."""
         spec = self.scene.regions.get(region)

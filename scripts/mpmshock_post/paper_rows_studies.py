@@ -30,6 +30,30 @@ def void_resolution_text(runs):
             f"mean squared gradients (docs/accuracy.md), which mixes resolution into the void-size effect")
 
 
+def band_sampling_text(runs, with_temperature=False):
+    """How one layout per radius samples B800: its own initial porosity in each run (few large voids
+    fill a band unevenly) and the full-compaction Hugoniot there; with_temperature: how far each
+    run's late mean temperature (energy model) lies from that Hugoniot's. Empty where a run has no
+    t = 0 sample."""
+    try:
+        states = [run.band_hugoniot(BOTTOM) for run in runs.values()]
+    except NotMeasured:
+        return ""
+    radii = "/".join(radius_label(run) for run in runs.values())
+    text = (f"B800's own porosity at t = 0 (its band density) is delta "
+            + "/".join(f"{state.porosity:.4f}" for state in states) + f" at {radii} (body: "
+            + "/".join(f"{run.porosity:.4g}" for run in runs.values()) + "): the layout, not the radius, sets how "
+            "porous the measured band is, and the full-compaction Hugoniot at those porosities gives "
+            + "/".join(f"{state.density * 1e-3:.4g}" for state in states) + " g/cm3, "
+            + "/".join(f"{state.pressure * 1e-9:.4g}" for state in states) + " GPa, "
+            + "/".join(f"{state.temperature:.0f}" for state in states) + " K (energy T)")
+    if with_temperature:
+        late = [run.late_mean(BOTTOM, "temperature_mean").mean for run in runs.values()]
+        text += "; our temperatures minus those: " + "/".join(
+            signed(ours - state.temperature, 2, "K") for ours, state in zip(late, states))
+    return text
+
+
 def radius_label(run):
     return f"r {float(run.scene['void_radius']) * 1e6:.3g} um"
 
@@ -40,14 +64,18 @@ def fig7_rows(c):
     the largest within-run fluctuation (rms about the window's line)."""
     rows = []
     for model in TEMPERATURE_MODELS:
-        def hotter(runs, model=model):
+        energy_model = model == TEMPERATURE_MODELS[0]  # the Hugoniot's temperature is the energy model's
+
+        def hotter(runs, energy_model=energy_model):
             late = {case: run.late_mean(BOTTOM, "temperature_mean") for case, run in runs.items()}
             values = [late[case].mean for case in runs]
             increasing = all(b > a for a, b in zip(values, values[1:]))
             return ("{}: ".format(yes_no(increasing)) + ", ".join(
                 f"{fmt(late[case].mean)} K ({radius_label(run)})" for case, run in runs.items()),
                 f"{'agree' if increasing else 'differ'}: B800 late-window means (last {LATE_WINDOW:.0f} ns before each "
-                f"run's t_stop); {void_resolution_text(runs)}; " + "; ".join(run.resolution for run in runs.values()))
+                f"run's t_stop); {void_resolution_text(runs)}; "
+                + (f"{sampling}; " if (sampling := band_sampling_text(runs, energy_model)) else "")
+                + "; ".join(run.resolution for run in runs.values()))
         rows.append(study_row(c, "Fig 7", f"larger voids give a higher mean temperature ({model})", "yes", "K",
                               [c.temperature_case(case, model) for case in VOID_CASES], hotter))
 
@@ -62,7 +90,8 @@ def fig7_rows(c):
         return (f"{yes_no(alike)}: " + ", ".join(parts),
                 f"{'agree' if alike else 'differ'}: B800 late-window means over the radii "
                 f"{', '.join(radius_label(r) for r in runs.values())}; no evident difference read as a spread within "
-                f"twice the largest fluctuation; units g/cm3, GPa, m/s; {void_resolution_text(runs)}")
+                f"twice the largest fluctuation; units g/cm3, GPa, m/s; {void_resolution_text(runs)}"
+                + (f"; {sampling}" if (sampling := band_sampling_text(runs)) else ""))
 
     rows.append(study_row(c, "Fig 7", "no evident difference in steady density, pressure and velocity", "yes",
                           "g/cm3, GPa, m/s", list(VOID_CASES), no_difference))

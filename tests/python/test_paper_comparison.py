@@ -388,3 +388,30 @@ def test_csv_header_and_quoting(rows, tmp_path):
     with open(path, newline="") as f:
         read = list(csv.DictReader(f))
     assert read == rows
+
+
+def test_void_size_rows_name_the_porosity_the_layout_gave_each_band(tmp_path):
+    """One layout per radius fills B800 with its own porosity (the band density at t = 0); Fig. 7's
+    rows give it and the full-compaction Hugoniot there (hugoniot.porous_shock, computed here
+    independently), and how far each run's temperature lies from that Hugoniot's."""
+    from mpmshock_post.hugoniot import porous_shock
+    band_delta = {"void_r25": 1.035, "base": 1.025, "void_r100": 1.02}
+    for case, radius in (("void_r25", 25e-6), ("base", 50e-6), ("void_r100", 100e-6)):
+        series = base_series(temperature_offset=10.0 * radius / 25e-6)
+        series["B800"]["macro_density"] = np.where(T == 0.0, 2700.0 / band_delta[case],
+                                                   series["B800"]["macro_density"])
+        write_run(tmp_path / case, series, scene_text(void_radius=radius, cell_size=radius / 5))
+    table = by_quantity(pc.comparison_rows(tmp_path))
+    energy = table["larger voids give a higher mean temperature (energy T)"]
+    assert energy["mpmshock"].startswith("yes")  # 10, 20, 40 K added to the same series
+    base = pm.CaseRun("base", tmp_path / "base")
+    material = base.material
+    states = [porous_shock(1000.0, band_delta[case], material) for case in ("void_r25", "base", "void_r100")]
+    assert "delta 1.0350/1.0250/1.0200 at r 25 um/r 50 um/r 100 um (body: 1.03/1.03/1.03)" in energy["note"]
+    assert "/".join(f"{s.temperature:.0f}" for s in states) + " K (energy T)" in energy["note"]
+    assert states[0].temperature - states[2].temperature > 20.0  # the band's porosity matters
+    late = base.late_mean("B800", "temperature_mean").mean
+    assert "our temperatures minus those: " in energy["note"]
+    assert pr.signed(late - states[1].temperature, 2, "K") in energy["note"]
+    steady = table["no evident difference in steady density, pressure and velocity"]
+    assert "/".join(f"{s.pressure * 1e-9:.4g}" for s in states) + " GPa" in steady["note"]
