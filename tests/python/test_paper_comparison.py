@@ -415,3 +415,20 @@ def test_void_size_rows_name_the_porosity_the_layout_gave_each_band(tmp_path):
     assert pr.signed(late - states[1].temperature, 2, "K") in energy["note"]
     steady = table["no evident difference in steady density, pressure and velocity"]
     assert "/".join(f"{s.pressure * 1e-9:.4g}" for s in states) + " GPa" in steady["note"]
+
+
+def test_layouts_give_each_number_with_its_standard_error(tmp_path, capsys):
+    """paper-layouts: two layouts of the base case 20 K apart in temperature give the late mean
+    temperature and Fig. 2's first maximum as their mean with SE = 10 K (|a - b| / 2), range 20 K."""
+    from mpmshock_post import paper_layouts
+    for seed, offset in ((1, 0.0), (2, 20.0)):
+        write_run(tmp_path / f"seed{seed}", base_series(temperature_offset=offset), scene_text() + f"seed = {seed}\n")
+    late = pm.CaseRun("base", tmp_path / "seed1").late_mean("B800", "temperature_mean").mean
+    assert paper_layouts.main([f"base={tmp_path / 'seed1'}", f"base={tmp_path / 'seed2'}"]) == 0
+    out = capsys.readouterr().out
+    assert "### base: 2 layouts" in out
+    mean_row = next(line for line in out.splitlines() if line.startswith("| mean ± SE |"))
+    assert f"| {late + 10.0:.4g} ± 10 |" in mean_row, mean_row
+    first = next(line for line in out.splitlines() if "| B800 first maximum of mean temperature (energy T) |" in line)
+    assert first.endswith("| 432 | 452 | 442 | 10 | 20 |"), first
+    assert "theory:" not in out  # the theory rows are the same for every layout
