@@ -23,6 +23,7 @@ import numpy as np
 from .errors import PostError, argument_type
 from .paper_comparison import comparison_rows
 from .paper_measures import BOTTOM, CaseRun, NotMeasured
+from .paper_rows import fmt
 from .reader import PaperTemperatureRun, has_paper_temperature
 
 LATE_COLUMNS = (("T, energy (K)", "temperature_mean"), ("density (g/cm3)", "density_mean"),
@@ -81,10 +82,6 @@ def spread(values):
     return a.mean(), se, a.max() - a.min()
 
 
-def fmt(value, template="{:.4g}"):
-    return "" if value is None or (isinstance(value, float) and math.isnan(value)) else template.format(value)
-
-
 def case_tables(case, paths):
     """The Markdown of one case: its late-means table and its comparison numbers over the layouts."""
     lines = [f"### {case}: {len(paths)} layout{'s' if len(paths) > 1 else ''}", ""]
@@ -97,7 +94,7 @@ def case_tables(case, paths):
         cells = []
         for key in labels:
             mean, se, _ = spread([values[key] for values in per_layout])
-            cells.append(f"{fmt(mean)} ± {fmt(se, '{:.2g}')}")
+            cells.append(f"{fmt(mean)} ± {fmt(se, 2)}")
         lines.append("| mean ± SE | " + " | ".join(cells) + " |")
     numbers = [numeric_rows(case, path) for path in paths]
     common = [key for key in numbers[0] if all(key in n for n in numbers[1:])]
@@ -108,7 +105,7 @@ def case_tables(case, paths):
             values = [n[key] for n in numbers]
             mean, se, width = spread(values)
             lines.append(f"| {key[0]} | {key[1]} | {key[2]} | " + " | ".join(fmt(v) for v in values)
-                         + f" | {fmt(mean)} | {fmt(se, '{:.2g}')} | {fmt(width, '{:.3g}')} |")
+                         + f" | {fmt(mean)} | {fmt(se, 2)} | {fmt(width, 3)} |")
     return lines + [""]
 
 
