@@ -87,6 +87,11 @@ def build_parser():
                         "it finishes, and take a run missing from DIR/runs from its record there, as finished: a "
                         "campaign longer than one sitting goes on from the last (a case whose snapshots a requested "
                         "figure reads, for Fig. 1, 3, 6 and 11, runs instead)")
+    parser.add_argument("--layouts", type=Path, metavar="LAYOUTS",
+                        help="runs or records of other void layouts of the cases, named CASE_seedN (such as "
+                        "docs/paper/layouts, made with --set seed=N): each comparison row that a case with layouts "
+                        "gives a number for alone notes the mean +- standard error over its layouts and how many "
+                        "SE the paper's value lies from it (scripts/paper-layouts)")
     parser.add_argument("--temperature-models", type=argument_type(_models), default=list(TEMPERATURE_MODELS),
                         metavar="energy,paper", help="temperature models to run (default both; paper needs the "
                         "scene key temperature_model and is skipped with a message where mpmshock lacks it)")
@@ -105,13 +110,17 @@ def machine():
     return f"{os.cpu_count()} cores (nproc {len(os.sched_getaffinity(0))}), {model}"
 
 
-def write_comparison(out, quick):
+def write_comparison(out, quick, layouts=None):
     try:
         from .paper_comparison import comparison_rows, write_comparison_csv
+        from .paper_layouts import with_layouts
     except ImportError as e:
         say(f"comparison.csv skipped: scripts/mpmshock_post/paper_comparison.py is not usable yet ({e})")
         return
-    write_comparison_csv(comparison_rows(runs_dir=out / "runs", quick=quick), out / "comparison.csv")
+    rows = comparison_rows(runs_dir=out / "runs", quick=quick)
+    if layouts is not None:
+        rows = with_layouts(rows, out / "runs", layouts)
+    write_comparison_csv(rows, out / "comparison.csv")
     say(f"wrote {out / 'comparison.csv'}")
 
 
@@ -183,6 +192,8 @@ def main(argv=None):
             models = ["energy"]
         if "paper" in models and args.quick and QUICK_PAPER_T_CASES is not None:
             say("quick: the paper temperature model runs only for " + ", ".join(QUICK_PAPER_T_CASES))
+        if args.layouts is not None and not args.layouts.is_dir():  # before hours of runs, not after
+            raise PostError(f"--layouts {args.layouts}: no such directory")
         out = args.out.resolve()
         (out / "runs").mkdir(parents=True, exist_ok=True)
         combined = "paper_temperature" in defaults
@@ -204,7 +215,7 @@ def main(argv=None):
         say(f"figures {', '.join(p.name for p in made)} written after {time.monotonic() - started:.0f} s")
         compared = True
         try:
-            write_comparison(out, args.quick)
+            write_comparison(out, args.quick, args.layouts)
         except Exception as e:  # another engineer's module: report, finish the page, exit non-zero
             say(f"comparison.csv failed: {type(e).__name__}: {e}")
             compared = False

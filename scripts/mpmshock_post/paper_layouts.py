@@ -9,11 +9,17 @@ experiment. For each case this prints, in Markdown,
   error of the mean over the layouts (SE) and the range.
 The SE is the error a single-layout number carries beside docs/accuracy.md's discretisation error:
 the paper's numbers come from one layout each.
+
+reproduce-paper --layouts DIR puts the same spread into comparison.csv (with_layouts): DIR holds
+records or runs named CASE_seedN (docs/paper/layouts), and each row that the campaign's CASE run
+gives a number for alone gets, in its note, the mean +- SE over its layouts and how many SE the
+paper's value lies from that mean.
 """
 
 import argparse
 import math
 import os
+import re
 import sys
 import tempfile
 from pathlib import Path
@@ -25,6 +31,7 @@ from .paper_comparison import comparison_rows
 from .paper_measures import BOTTOM, CaseRun, NotMeasured
 from .paper_rows import fmt
 from .reader import PaperTemperatureRun, has_paper_temperature
+from .scene import Scene
 
 LATE_COLUMNS = (("T, energy (K)", "temperature_mean"), ("density (g/cm3)", "density_mean"),
                 ("pressure (GPa)", "pressure_mean"), ("<Rot^2> (1/ns^2)", "rot2_mean"),
@@ -80,6 +87,71 @@ def spread(values):
     a = np.asarray(values, dtype=float)
     se = a.std(ddof=1) / math.sqrt(a.size) if a.size > 1 else math.nan
     return a.mean(), se, a.max() - a.min()
+
+
+# Scene keys that may differ between layouts of one case: the layout itself and where and how
+# often a run writes its output (neither changes a region series).
+LAYOUT_KEYS = ("seed", "output_dir", "snapshot_interval", "snapshot_times")
+
+
+def layout_dirs(layouts_dir):
+    """{case: [run or record directories]} of layouts_dir's CASE_seedN entries, by seed."""
+    if not Path(layouts_dir).is_dir():
+        raise PostError(f"--layouts {layouts_dir}: no such directory")
+    found = {}
+    for path in sorted(Path(layouts_dir).iterdir()):
+        match = re.fullmatch(r"(.+)_seed(\d+)", path.name)
+        if match and (path / "regions.csv").is_file():
+            found.setdefault(match.group(1), []).append((int(match.group(2)), path))
+    return {case: [path for _, path in sorted(entries)] for case, entries in found.items()}
+
+
+def same_sample(campaign_dir, layout_dir):
+    """PostError unless layout_dir ran the scene of campaign_dir with another seed only."""
+    scenes = [Scene((d / "scene.txt").read_text(), str(d / "scene.txt")) for d in (campaign_dir, layout_dir)]
+    keys = sorted(set(scenes[0]) | set(scenes[1]))
+    differ = [k for k in keys if k not in LAYOUT_KEYS and scenes[0].get(k) != scenes[1].get(k)]
+    if differ:
+        raise PostError(f"{layout_dir}: not a layout of {campaign_dir}: its scene differs in "
+                        + ", ".join(f"{k} ({scenes[1].get(k)} against {scenes[0].get(k)})" for k in differ))
+    if scenes[0].get("seed", 1.0) == scenes[1].get("seed", 1.0):
+        raise PostError(f"{layout_dir}: the same seed as {campaign_dir}: the same layout, not another")
+
+
+def _paper_number(text):
+    try:
+        return float(text)
+    except ValueError:
+        return None
+
+
+def with_layouts(rows, runs_dir, layouts_dir):
+    """`rows` (comparison_rows of runs_dir) with the layout spread in the notes of every row that a
+    case with layouts in layouts_dir gives a number for alone: 'over N void layouts (seeds ...):
+    mean +- SE, range R[; the paper's value lies k SE from the mean]'. A row whose number needs
+    several cases (a study row) or that a case run alone does not give the same is left as it is."""
+    rows = [dict(r) for r in rows]
+    for case, paths in layout_dirs(layouts_dir).items():
+        campaign_dir = Path(runs_dir) / case
+        if not (campaign_dir / "regions.csv").is_file():
+            continue
+        for path in paths:
+            same_sample(campaign_dir, path)
+        numbers = [numeric_rows(case, d) for d in [campaign_dir, *paths]]
+        seeds = [f"{float(CaseRun(case, d).scene.get('seed', 1)):.0f}" for d in [campaign_dir, *paths]]
+        for entry in rows:
+            key = (entry["figure"], entry["quantity"], entry["unit"])
+            ours = _paper_number(entry["mpmshock"])
+            if ours is None or not all(key in n for n in numbers) or numbers[0][key] != ours:
+                continue
+            mean, se, width = spread([n[key] for n in numbers])
+            text = (f"over {len(numbers)} void layouts (seeds {', '.join(seeds)}): {fmt(mean)} ± {fmt(se, 2)} "
+                    f"{entry['unit']} (mean ± SE), range {fmt(width, 3)}").replace("  ", " ")
+            paper = _paper_number(entry["paper"])
+            if paper is not None and se > 0:
+                text += f"; the paper's {fmt(paper)} lies {abs(paper - mean) / se:.1f} SE from that mean"
+            entry["note"] = f"{entry['note']}; {text}" if entry["note"] else text
+    return rows
 
 
 def case_tables(case, paths):

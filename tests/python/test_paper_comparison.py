@@ -432,3 +432,46 @@ def test_layouts_give_each_number_with_its_standard_error(tmp_path, capsys):
     first = next(line for line in out.splitlines() if "| B800 first maximum of mean temperature (energy T) |" in line)
     assert first.endswith("| 432 | 452 | 442 | 10 | 20 |"), first
     assert "theory:" not in out  # the theory rows are the same for every layout
+
+
+def test_layouts_put_their_spread_into_the_comparison_notes(tmp_path):
+    """with_layouts (reproduce-paper --layouts): the campaign's base run (seed 1) and layouts
+    base_seed2, base_seed3 with temperatures 20 and 40 K higher give the first-maximum row the
+    mean 452 K, SE 20/sqrt(3) = 11.5 K and the paper's 432 K 1.7 SE away; the number itself, rows
+    of other cases and theory rows are left as they are."""
+    from mpmshock_post import paper_layouts
+    runs, layouts = tmp_path / "runs", tmp_path / "layouts"
+    write_run(runs / "base", base_series(), scene_text() + "seed = 1\n")
+    for seed, offset in ((2, 20.0), (3, 40.0)):
+        write_run(layouts / f"base_seed{seed}", base_series(temperature_offset=offset),
+                  scene_text() + f"seed = {seed}\noutput_dir = /elsewhere/s{seed}\n")
+    (layouts / "notes").mkdir()  # not CASE_seedN: ignored
+    plain = pc.comparison_rows(runs)
+    rows = paper_layouts.with_layouts(plain, runs, layouts)
+    assert [r["mpmshock"] for r in rows] == [r["mpmshock"] for r in plain]
+    first = by_quantity(rows)["B800 first maximum of mean temperature (energy T)"]
+    assert first["mpmshock"] == "432"
+    assert first["note"].startswith(by_quantity(plain)[first["quantity"]]["note"])
+    assert first["note"].endswith("; over 3 void layouts (seeds 1, 2, 3): 452 ± 12 K (mean ± SE), range 40; "
+                                  "the paper's 432 lies 1.7 SE from that mean"), first["note"]
+    for quantity, entry in by_quantity(rows).items():
+        if quantity.startswith("theory:") or not entry["mpmshock"]:
+            assert entry["note"] == by_quantity(plain)[quantity]["note"], quantity
+
+
+def test_layouts_of_another_scene_or_the_same_seed_are_refused(tmp_path):
+    """A 'layout' that ran another scene (here another velocity) or the campaign's own seed is
+    not a layout: PostError naming the record and what differs."""
+    from mpmshock_post import paper_layouts
+    from mpmshock_post.errors import PostError
+    runs = tmp_path / "runs"
+    write_run(runs / "base", base_series(), scene_text() + "seed = 1\n")
+    write_run(tmp_path / "other" / "base_seed2", base_series(), scene_text(velocity=1500.0) + "seed = 2\n")
+    write_run(tmp_path / "same" / "base_seed1", base_series(), scene_text() + "seed = 1\n")
+    rows = pc.comparison_rows(runs)
+    with pytest.raises(PostError, match=r"base_seed2: not a layout of .*velocity \(1500.0 against 1000.0\)"):
+        paper_layouts.with_layouts(rows, runs, tmp_path / "other")
+    with pytest.raises(PostError, match=r"base_seed1: the same seed"):
+        paper_layouts.with_layouts(rows, runs, tmp_path / "same")
+    with pytest.raises(PostError, match="no such directory"):
+        paper_layouts.with_layouts(rows, runs, tmp_path / "missing")
