@@ -171,28 +171,42 @@ def fig9_rows(c):
     return rows + theory_delta14_rows(c)
 
 
+# The shock each case of Fig. 9, 12 and 13 drives (configs/paper/CASE.scene; test_paper_comparison checks
+# the scenes): (impact velocity in m/s, porosity delta).
+CASE_SHOCKS = {"delta1.4": (1000.0, 1.4), "delta1.4_v500": (500.0, 1.4), "delta1.4_v1500": (1500.0, 1.4),
+               "delta1.4_v2000": (2000.0, 1.4), "delta1.01": (1000.0, 1.01), "delta1.02": (1000.0, 1.02),
+               "delta1.1": (1000.0, 1.1), "delta1.7": (1000.0, 1.7)}
+
+
 def theory_delta14_rows(c):
-    """The full-compaction porous Hugoniot at delta 1.4, 1000 m/s, against our B800 late-window means
-    (macro_density, macro_normal_stress, temperature_mean of each model)."""
+    """The full-compaction porous Hugoniot at delta 1.4, 1000 m/s against our B800 late-window means,
+    with T_H at its density (the paper model's least temperature)."""
+    return theory_case_rows(c, "Fig 9", "delta1.4", paper_least=True)
+
+
+def theory_case_rows(c, figure, case, paper_least=False):
+    """The full-compaction porous Hugoniot of `case`'s shock (CASE_SHOCKS) against our B800
+    late-window means (macro_density, macro_normal_stress, temperature_mean of the energy model;
+    with paper_least, T_H at the Hugoniot density against the paper model's temperature)."""
+    velocity, porosity = CASE_SHOCKS[case]
+    label = f"(delta {porosity:g}, {velocity:.0f} m/s)"
     try:
         material = c.material
     except PostError as e:
-        return [row("Fig 9", "theory: full-compaction porous Hugoniot (delta 1.4, 1000 m/s)", "", "", "",
-                    f"not computed: {e}")]
-    state = porous_shock(1000.0, 1.4, material)
-    t_h = hugoniot_temperature_table(material).hugoniot_temperature(state.J)
-    entries = (("full-compaction porous Hugoniot density", "macro_density", state.density * 1e-3, "g/cm3",
-                "delta1.4"),
-               ("full-compaction porous Hugoniot pressure", "macro_normal_stress", state.pressure * 1e-9, "GPa",
-                "delta1.4"),
+        return [row(figure, f"theory: full-compaction porous Hugoniot {label}", "", "", "", f"not computed: {e}")]
+    state = porous_shock(velocity, porosity, material)
+    entries = [("full-compaction porous Hugoniot density", "macro_density", state.density * 1e-3, "g/cm3", case),
+               ("full-compaction porous Hugoniot pressure", "macro_normal_stress", state.pressure * 1e-9, "GPa", case),
                ("full-compaction porous Hugoniot temperature (energy T)", "temperature_mean", state.temperature, "K",
-                "delta1.4"),
-               (PAPER_T_LEAST, "temperature_mean", t_h, "K", "delta1.4" + PAPER_T_SUFFIX))
+                case)]
+    if paper_least:
+        t_h = hugoniot_temperature_table(material).hugoniot_temperature(state.J)
+        entries.append((PAPER_T_LEAST, "temperature_mean", t_h, "K", case + PAPER_T_SUFFIX))
     rows = []
-    for name, column, theory, unit, case in entries:
-        run = c.get(case)
+    for name, column, theory, unit, run_name in entries:
+        run = c.get(run_name)
         if run is None:
-            note = f"theory (hugoniot.porous_shock); ours: not run: {c.why(case)}"
+            note = f"theory (hugoniot.porous_shock); ours: not run: {c.why(run_name)}"
         else:
             try:
                 late = run.late_mean(BOTTOM, column)
@@ -201,8 +215,7 @@ def theory_delta14_rows(c):
                         f"{run.resolution}")
             except NotMeasured as e:
                 note = f"theory (hugoniot.porous_shock); ours not measured: {e}"
-        rows.append(row("Fig 9", f"theory: {name} (delta 1.4, 1000 m/s)", "", unit,
-                        fmt(theory), note))
+        rows.append(row(figure, f"theory: {name} {label}", "", unit, fmt(theory), note))
     return rows
 
 
@@ -310,6 +323,9 @@ def fig12_rows(c):
         rows.append(study_row(c, "Fig 12", f"delta 1.4: temperature increases faster with a stronger shock ({model})",
                               "yes", "K/us", [c.temperature_case(case, model) for case in SPEED_CASES],
                               trend_with_speed("temperature_mean", "K", 1.0)))
+    for case in SPEED_CASES:
+        if case != "delta1.4":  # its theory rows are Fig. 9's
+            rows += theory_case_rows(c, "Fig 12", case)
     return rows
 
 
@@ -345,7 +361,11 @@ def fig13_rows(c):
                 f"mean R^2 {np.mean(large_r2):.2f} (large) vs {np.mean(small_r2):.2f} (small); "
                 + "; ".join(run.resolution for run in runs.values()))
 
-    return [study_row(c, "Fig 13", "small porosity: density decrease rate grows with porosity", "yes", "g/cm3/us",
+    rows = [study_row(c, "Fig 13", "small porosity: density decrease rate grows with porosity", "yes", "g/cm3/us",
                       list(SMALL_POROSITY_CASES), small),
             study_row(c, "Fig 13", "large porosity: density shows more complex behaviour", "yes", "g/cm3/us",
                       list(SMALL_POROSITY_CASES + LARGE_POROSITY_CASES), large)]
+    for case in SMALL_POROSITY_CASES + LARGE_POROSITY_CASES:
+        if case != "delta1.4":
+            rows += theory_case_rows(c, "Fig 13", case)
+    return rows

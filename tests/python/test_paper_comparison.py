@@ -381,6 +381,42 @@ def test_theory_rows(rows):
         pytest.approx(2.8175, abs=1e-3)
 
 
+def test_every_shock_study_case_has_its_hugoniot_rows(rows, runs):
+    """Fig. 12 and 13 give the full-compaction porous Hugoniot of each case's own shock (computed here
+    with porous_shock at the scene's velocity and porosity), against its B800 late mean where the
+    case ran: delta1.4_v2000's synthetic macro_density averages 3000 - 200 * 0.75 - 100 = 2750 kg/m3 over
+    the late window 900-1200 ns."""
+    from mpmshock_post.hugoniot import porous_shock
+    from mpmshock_post.paper_rows_studies import CASE_SHOCKS
+    table = by_quantity(rows)
+    material = pm.CaseRun("base", runs / "base").material
+    for case, (velocity, porosity) in CASE_SHOCKS.items():
+        state = porous_shock(velocity, porosity, material)
+        label = f"(delta {porosity:g}, {velocity:.0f} m/s)"
+        density = table[f"theory: full-compaction porous Hugoniot density {label}"]
+        assert float(density["mpmshock"]) == pytest.approx(state.density * 1e-3, rel=1e-3), case
+        assert float(table[f"theory: full-compaction porous Hugoniot temperature (energy T) {label}"]["mpmshock"]) \
+            == pytest.approx(state.temperature, rel=1e-3), case
+    strong = porous_shock(2000.0, 1.4, material)
+    late = pm.CaseRun("delta1.4_v2000", runs / "delta1.4_v2000").late_mean("B800", "macro_density").mean
+    assert late == pytest.approx(2.75, abs=1e-3)
+    note = table["theory: full-compaction porous Hugoniot density (delta 1.4, 2000 m/s)"]["note"]
+    assert f"({pr.signed(100 * (late / (strong.density * 1e-3) - 1), 2)} %)" in note, note
+    assert table["theory: full-compaction porous Hugoniot density (delta 1.7, 1000 m/s)"]["note"].endswith(
+        "ours: not run: delta1.7")
+    assert strong.pressure > porous_shock(1500.0, 1.4, material).pressure > porous_shock(500.0, 1.4, material).pressure
+
+
+def test_shock_study_scenes_drive_the_shocks_the_theory_rows_assume():
+    """configs/paper/CASE.scene has the velocity and porosity of CASE_SHOCKS[CASE]."""
+    from mpmshock_post.paper_rows_studies import CASE_SHOCKS
+    from conftest import ROOT
+    from mpmshock_post.scene_input import parse_value, read_scene_text
+    for case, (velocity, porosity) in CASE_SHOCKS.items():
+        scene = read_scene_text((ROOT / "configs/paper" / f"{case}.scene").read_text())
+        assert (parse_value(scene["velocity"]), parse_value(scene["porosity"])) == (velocity, porosity), case
+
+
 def test_csv_header_and_quoting(rows, tmp_path):
     path = tmp_path / "comparison.csv"
     pc.write_comparison_csv(rows, path)
