@@ -247,9 +247,13 @@ class Accuracy:
     text: str
 
 
-def accuracy_at(porosity, cells_per_radius):
+ACCURACY_VELOCITY = 1000.0  # m/s: every porous level of ACCURACY was run at this impact velocity
+
+
+def accuracy_at(porosity, cells_per_radius, velocity=ACCURACY_VELOCITY):
     """The docs/accuracy.md estimate at the studied porosity and r/h nearest (in log) to the run's;
-    a run coarser than the coarsest studied level gets that level's numbers as lower bounds."""
+    a run coarser than the coarsest studied level gets that level's numbers as lower bounds, and a
+    run at another velocity is told that the estimate was made at ACCURACY_VELOCITY."""
     studied = min(ACCURACY, key=lambda d: abs(math.log(d) - math.log(porosity)))
     levels = ACCURACY[studied]
     level = min(levels, key=lambda r: abs(math.log(r) - math.log(cells_per_radius)))
@@ -261,6 +265,8 @@ def accuracy_at(porosity, cells_per_radius):
             f"pressure by {bound}{pressure:g} %, understate T by {bound}{temperature:g} K")
     if coarser:
         text += f" (this run, h = r/{cells_per_radius:.2g}, is coarser than any level studied)"
+    if abs(velocity - ACCURACY_VELOCITY) > 1.0:
+        text += f" (estimated at {ACCURACY_VELOCITY:.0f} m/s; this run is at {velocity:.0f} m/s)"
     return Accuracy(density / 100.0, pressure / 100.0, temperature, text)
 
 
@@ -427,7 +433,7 @@ class CaseRun:
     @cached_property
     def accuracy(self):
         """docs/accuracy.md's error estimate at this run's porosity and r/h (accuracy_at)."""
-        return accuracy_at(self.porosity, self.cells_per_radius)
+        return accuracy_at(self.porosity, self.cells_per_radius, self.velocity)
 
     @property
     def resolution(self):

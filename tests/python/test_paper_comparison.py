@@ -249,6 +249,10 @@ def test_accuracy_at_nearest_level_and_coarser_runs():
     assert pm.accuracy_at(1.01, 5.0).temperature == pytest.approx(7.1)   # nearest studied porosity: 1.03
     coarse = pm.accuracy_at(1.4, 1.0)
     assert coarse.density == pytest.approx(0.028) and "coarser than any level" in coarse.text
+    assert "1000 m/s" not in coarse.text
+    fast = pm.accuracy_at(1.4, 2.0, velocity=2000.0)
+    assert fast.pressure == pytest.approx(0.405) and fast.text.endswith(
+        "(estimated at 1000 m/s; this run is at 2000 m/s)")
 
 
 # --- rows from synthetic runs ---------------------------------------------------------------------------
