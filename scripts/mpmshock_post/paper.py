@@ -72,7 +72,7 @@ def build_parser():
         epilog=quick_text() + " It took 5 to 6 minutes and 3 GB on the project's shared 2-core machine (the "
         "budget is 15 minutes); "
         "--jobs 2 is faster there. The full campaign (configs/paper as written: 5 and 10 um cells, 2 mm wide) "
-        "takes 7 to 10 hours there on 2 MPI ranks, one run per case for both temperature models (README): "
+        "takes 9 to 11 hours there on 2 MPI ranks, one run per case for both temperature models (README): "
         "--records carries it over several sittings.")
     parser.add_argument("--out", required=True, type=Path, metavar="DIR", help="output directory")
     parser.add_argument("--quick", action="store_true", help="reduced resolution and width (see below)")
