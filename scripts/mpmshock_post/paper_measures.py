@@ -87,10 +87,25 @@ def in_window(t, y, t0, t1):
     return t[keep], y[keep]
 
 
+def slope_standard_error(t, residual):
+    """Standard error of a least-squares slope (per unit of t) whose residuals are correlated in
+    time, as a region mean's are: the ordinary error sqrt(s^2 / Sxx), s^2 = sum r^2 / (n - 2),
+    widened by sqrt((1 + rho) / (1 - rho)) for the residuals' lag-1 autocorrelation rho (an AR(1)
+    noise has n (1 - rho) / (1 + rho) independent samples); rho is taken in [0, 0.95]."""
+    t, residual = np.asarray(t, dtype=float), np.asarray(residual, dtype=float)
+    sxx = np.sum((t - t.mean()) ** 2)
+    energy = np.sum(residual ** 2)
+    if t.size < 3 or sxx <= 0 or energy <= 0:
+        return 0.0
+    rho = float(np.clip(np.sum(residual[1:] * residual[:-1]) / energy, 0.0, 0.95))
+    return float(np.sqrt(energy / (t.size - 2) / sxx * (1.0 + rho) / (1.0 - rho)))
+
+
 @dataclass(frozen=True)
 class Trend:
-    """A series over a window: least-squares slope (per us), R^2, mean, and the rms of the residual
-    about the line (the fluctuation once the trend is removed)."""
+    """A series over a window: least-squares slope (per us) with its standard error
+    (slope_standard_error), R^2, mean, and the rms of the residual about the line (the fluctuation
+    once the trend is removed)."""
 
     t0: float
     t1: float
@@ -98,6 +113,12 @@ class Trend:
     r2: float
     mean: float
     fluctuation: float
+    slope_se: float = 0.0  # per us
+
+    @property
+    def distinguishable_from_zero(self):
+        """|slope| beyond twice its standard error."""
+        return abs(self.slope) > 2.0 * self.slope_se
 
 
 def trend(t, y, t0, t1, min_length=MIN_WINDOW):
@@ -107,7 +128,8 @@ def trend(t, y, t0, t1, min_length=MIN_WINDOW):
     tw, yw = in_window(t, y, t0, t1)
     slope, intercept, r2 = linear_fit(tw, yw)
     residual = yw - (slope * tw + intercept)
-    return Trend(t0, t1, 1e3 * slope, r2, float(yw.mean()), float(np.sqrt(np.mean(residual ** 2))))
+    return Trend(t0, t1, 1e3 * slope, r2, float(yw.mean()), float(np.sqrt(np.mean(residual ** 2))),
+                 1e3 * slope_standard_error(tw, residual))
 
 
 def rise_end(t, y, t_max):

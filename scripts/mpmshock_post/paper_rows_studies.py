@@ -2,6 +2,8 @@
 rows at delta 1.4), shock strength (Fig. 12) and porosity (Fig. 13).
 """
 
+import math
+
 import numpy as np
 
 from .errors import PostError
@@ -148,9 +150,12 @@ def fig9_rows(c):
         def measure(run):
             fit = run.after_initial_stage(BOTTOM, column)
             down = fit.slope < 0
-            return (f"{yes_no(down)}: {signed(fit.slope, 3, unit + '/us')} (R^2 {fit.r2:.2f})",
-                    f"{'agree' if down else 'differ'}: least-squares slope over {fit.t0:.0f}-{fit.t1:.0f} ns (first "
-                    f"maximum of the density to t_stop); {run.accuracy.text}; {run.resolution}")
+            verdict = ("differ" if not down else "agree" if fit.distinguishable_from_zero
+                       else "agree in sign only (the slope lies within 2 standard errors of zero)")
+            return (f"{yes_no(down)}: {slope_text(fit)} {unit}/us (R^2 {fit.r2:.2f})",
+                    f"{verdict}: least-squares slope (+- standard error, residuals' autocorrelation allowed for) over "
+                    f"{fit.t0:.0f}-{fit.t1:.0f} ns (first maximum of the density to t_stop); {run.accuracy.text}; "
+                    f"{run.resolution}")
         return measure
 
     rows = [measured_row(c, "Fig 9", "delta 1.4: B800 density decreases after the initial stage", "yes", "g/cm3/us",
@@ -161,10 +166,12 @@ def fig9_rows(c):
         def faster(high, low):
             fast = high.after_initial_stage(BOTTOM, "temperature_mean")
             slow = low.after_initial_stage(BOTTOM, "temperature_mean")
-            return (f"{yes_no(fast.slope > slow.slope)}: {signed(fast.slope, 3, 'K/us')} vs "
-                    f"{signed(slow.slope, 3, 'K/us')} at delta 1.03",
-                    f"{'agree' if fast.slope > slow.slope else 'differ'}: slopes over {fast.t0:.0f}-{fast.t1:.0f} ns "
-                    f"(delta 1.4) and {slow.t0:.0f}-{slow.t1:.0f} ns (delta 1.03); {high.resolution}; {low.resolution}")
+            return (f"{yes_no(fast.slope > slow.slope)}: {slope_text(fast)} K/us vs "
+                    f"{slope_text(slow)} K/us at delta 1.03",
+                    f"{'agree' if fast.slope > slow.slope else 'differ'}: slopes (+- standard error, residuals' "
+                    f"autocorrelation allowed for) over {fast.t0:.0f}-{fast.t1:.0f} ns (delta 1.4) and "
+                    f"{slow.t0:.0f}-{slow.t1:.0f} ns (delta 1.03); {separation_text([fast, slow])}; "
+                    f"{high.resolution}; {low.resolution}")
         rows.append(measured_row(c, "Fig 9", f"temperature rises faster at delta 1.4 than at 1.03 ({model})", "yes",
                                  "K/us", [c.temperature_case("delta1.4", model), c.temperature_case("base", model)],
                                  faster))
@@ -311,10 +318,12 @@ def fig12_rows(c):
             fits = slopes_after_initial_stage(runs, column)
             values = [sign * fits[case].slope for case in runs]
             grows = all(b > a for a, b in zip(values, values[1:]))
-            return (f"{yes_no(grows)}: " + ", ".join(f"{signed(fits[case].slope, 3)} at {run.velocity:.0f} m/s"
+            return (f"{yes_no(grows)}: " + ", ".join(f"{slope_text(fits[case])} at {run.velocity:.0f} m/s"
                                                       for case, run in runs.items()) + f" {unit}/us",
-                    f"{'agree' if grows else 'differ'}: B800 least-squares slopes from the first maximum of the "
-                    f"density to t_stop; " + "; ".join(run.resolution for run in runs.values()))
+                    f"{'agree' if grows else 'differ'}: B800 least-squares slopes (+- standard error, residuals' "
+                    f"autocorrelation allowed for) from the first maximum of the density to t_stop; "
+                    + separation_text([fits[case] for case in runs]) + "; "
+                    + "; ".join(run.resolution for run in runs.values()))
         return measure
 
     rows = [study_row(c, "Fig 12", "delta 1.4: density decreases faster with a stronger shock", "yes", "g/cm3/us",
@@ -329,6 +338,28 @@ def fig12_rows(c):
     return rows
 
 
+def slope_text(fit):
+    """A Trend's slope with its standard error, e.g. '-0.0084 +- 0.0012'."""
+    return f"{signed(fit.slope, 3)} +- {fmt(fit.slope_se, 2)}"
+
+
+def separation_text(fits):
+    """How many neighbouring slopes of a study (in its order) differ by more than twice their combined
+    standard error, sqrt(se_a^2 + se_b^2), and by how many the first and the last differ: whether its
+    ordering is beyond the noise."""
+    def apart(a, b):
+        error = math.hypot(a.slope_se, b.slope_se)
+        return abs(b.slope - a.slope) / error if error > 0 else math.inf
+
+    if len(fits) < 2:
+        return "one slope alone"
+    if len(fits) == 2:
+        return f"the two slopes differ by {apart(*fits):.1f} combined standard errors"
+    pairs = list(zip(fits, fits[1:]))
+    return (f"{sum(apart(a, b) > 2.0 for a, b in pairs)} of {len(pairs)} neighbouring slopes differ by more than 2 "
+            f"combined standard errors, the first and the last by {apart(fits[0], fits[-1]):.1f}")
+
+
 def fig13_rows(c):
     """1000 m/s, delta 1.01 ... 1.7: B800 density slopes after the initial stage
     (CaseRun.after_initial_stage). At small porosity (1.01, 1.02, 1.1) the decrease rate grows with
@@ -340,10 +371,15 @@ def fig13_rows(c):
         fits = slopes_after_initial_stage(runs, "density_mean")
         values = [fits[case].slope for case in runs]
         grows = all(b < a for a, b in zip(values, values[1:]))
-        return (f"{yes_no(grows)}: " + ", ".join(f"{signed(fits[case].slope, 3)} at delta {run.porosity:g}"
+        flat = [f"{run.porosity:g}" for case, run in runs.items() if not fits[case].distinguishable_from_zero]
+        separation = separation_text([fits[case] for case in runs])
+        return (f"{yes_no(grows)}: " + ", ".join(f"{slope_text(fits[case])} at delta {run.porosity:g}"
                                                  for case, run in runs.items()) + " g/cm3/us",
-                f"{'agree' if grows else 'differ'}: B800 slopes from the first maximum of the density to t_stop; "
-                + "; ".join(run.resolution for run in runs.values()))
+                f"{'agree' if grows else 'differ'}: B800 slopes (+- standard error, residuals' autocorrelation "
+                f"allowed for) from the first maximum of the density to t_stop; "
+                + (f"within 2 standard errors of zero (no measurable trend) at delta {', '.join(flat)}; "
+                   if flat else "every slope beyond 2 standard errors of zero; ")
+                + separation + "; " + "; ".join(run.resolution for run in runs.values()))
 
     def large(runs):
         fits = slopes_after_initial_stage(runs, "density_mean")
@@ -354,7 +390,7 @@ def fig13_rows(c):
         slopes = [fits[case].slope for case in runs]
         monotone = all(b < a for a, b in zip(slopes, slopes[1:]))
         complex_ = not monotone or np.mean(large_r2) < np.mean(small_r2)
-        return (f"{yes_no(complex_)}: " + ", ".join(f"{signed(fits[case].slope, 3)} (R^2 {fits[case].r2:.2f}) at delta "
+        return (f"{yes_no(complex_)}: " + ", ".join(f"{slope_text(fits[case])} (R^2 {fits[case].r2:.2f}) at delta "
                                                     f"{run.porosity:g}" for case, run in runs.items()) + " g/cm3/us",
                 f"{'agree' if complex_ else 'differ'}: more complex read as slopes that stop falling with delta or a "
                 f"worse straight-line fit at large porosity; slopes fall monotonically with delta: {yes_no(monotone)}; "

@@ -217,6 +217,73 @@ def test_trend_slope_per_microsecond_and_fluctuation():
         pm.trend(T, T, 600.0, 650.0)  # shorter than MIN_WINDOW
 
 
+def ar1_noise(rng, size, rho, sigma):
+    """AR(1) noise of lag-1 correlation rho and stationary standard deviation sigma."""
+    e = np.empty(size)
+    e[0] = rng.normal(0.0, sigma)
+    for i in range(1, size):
+        e[i] = rho * e[i - 1] + rng.normal(0.0, sigma * np.sqrt(1.0 - rho ** 2))
+    return e
+
+
+@pytest.mark.parametrize("rho", [0.0, 0.8])
+def test_slope_standard_error_matches_the_scatter_of_slopes(rho):
+    """Over 400 noisy copies of one line, the mean standard error a single fit reports is the scatter
+    of the fitted slopes; for correlated noise (rho 0.8) the ordinary error alone would be about 3
+    times too small, so this fails without the autocorrelation factor."""
+    rng = np.random.default_rng(7)
+    t = np.arange(300.0, 1300.0, 10.0)
+    slopes, errors, ordinary = [], [], []
+    for _ in range(400):
+        y = 3.0 - 0.01e-3 * t + ar1_noise(rng, t.size, rho, 0.01)
+        fit = pm.trend(t, y, 300.0, 1290.0)
+        slopes.append(fit.slope)
+        errors.append(fit.slope_se)
+        residual = y - np.polyval(np.polyfit(t, y, 1), t)
+        ordinary.append(1e3 * np.sqrt(np.sum(residual ** 2) / (t.size - 2) / np.sum((t - t.mean()) ** 2)))
+    assert np.mean(slopes) == pytest.approx(-0.01, abs=3 * np.std(slopes) / np.sqrt(400))
+    assert np.mean(errors) == pytest.approx(np.std(slopes), rel=0.2)
+    if rho > 0:
+        assert np.mean(ordinary) < 0.5 * np.std(slopes)
+
+
+def test_slope_standard_error_of_a_line_and_of_too_few_samples():
+    assert pm.slope_standard_error([0.0, 1.0], [0.1, -0.1]) == 0.0
+    assert pm.slope_standard_error(T, np.zeros_like(T)) == 0.0
+
+
+def test_a_slope_within_two_standard_errors_is_not_distinguishable_from_zero():
+    assert not pm.Trend(0.0, 1.0, -0.008, 0.5, 3.0, 0.01, slope_se=0.0055).distinguishable_from_zero
+    assert pm.Trend(0.0, 1.0, -0.012, 0.5, 3.0, 0.01, slope_se=0.0055).distinguishable_from_zero
+
+
+def test_separation_of_a_studys_slopes():
+    from mpmshock_post.paper_rows_studies import separation_text
+    fits = [pm.Trend(0.0, 1.0, slope, 0.5, 3.0, 0.01, slope_se=1.0) for slope in (0.0, 2.0, 4.0, 9.0)]
+    # neighbours 2, 2 and 5 apart against 2 sqrt(2) = 2.83; first to last 9 / sqrt(2) = 6.4
+    assert separation_text(fits) == ("1 of 3 neighbouring slopes differ by more than 2 combined standard "
+                                     "errors, the first and the last by 6.4")
+    assert separation_text(fits[:2]) == "the two slopes differ by 1.4 combined standard errors"
+    assert separation_text(fits[:1]) == "one slope alone"
+
+
+def test_a_fall_within_the_noise_agrees_in_sign_only(tmp_path):
+    """Fig. 9's 'density decreases' on a delta 1.4 run whose fall is small beside correlated noise."""
+    rng = np.random.default_rng(2)
+    series = porous_series(-0.002, 40.0)
+    after = T > 300.0
+    series["B800"]["density_mean"] = series["B800"]["density_mean"] + np.where(after, ar1_noise(rng, T.size, 0.9, 20.0),
+                                                                               0.0)
+    write_run(tmp_path / "delta1.4", series, scene_text(velocity=1000.0, porosity=1.4, void_radius=10e-6,
+                                                        cell_size=5e-6, regions={"B800": REGIONS["B800"],
+                                                                                 "T800": REGIONS["T800"]}))
+    row = by_quantity(pc.comparison_rows(tmp_path))["delta 1.4: B800 density decreases after the initial stage"]
+    assert " +- " in row["mpmshock"]
+    slope, error = (float(x) for x in row["mpmshock"].split(": ")[1].split(" g/cm3")[0].split(" +- "))
+    assert -2 * error < slope < 0  # this seed's noise leaves the fall negative but within the noise
+    assert row["note"].startswith("agree in sign only (the slope lies within 2 standard errors of zero)")
+
+
 def test_oscillation_ignores_slow_trends():
     slow = 2.7 + 1e-4 * T
     fast = slow + 0.005 * np.sin(2 * np.pi * T / 30.0)
@@ -322,7 +389,9 @@ def test_dip_and_t100_oscillations(rows):
 def test_shock_strength_study_with_a_missing_speed(rows):
     row = by_quantity(rows)["delta 1.4: density decreases faster with a stronger shock"]
     assert row["mpmshock"].startswith("yes")
-    assert "-0.05" in row["mpmshock"] and "-0.2 at 2000 m/s" in row["mpmshock"]
+    assert "-0.05 +- " in row["mpmshock"] and "-0.2 +- " in row["mpmshock"] and "at 2000 m/s" in row["mpmshock"]
+    # exact lines: every slope is apart from its neighbours far beyond their (round-off) errors
+    assert "2 of 2 neighbouring slopes differ by more than 2 combined standard errors" in row["note"]
     assert "not run: delta1.4_v500" in row["note"]
     temperature = by_quantity(rows)["delta 1.4: temperature increases faster with a stronger shock (energy T)"]
     assert temperature["mpmshock"].startswith("yes") and "+40" in temperature["mpmshock"]
