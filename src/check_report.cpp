@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <vector>
 
 #include "mpmshock/run.hpp"
 #include "mpmshock/setup.hpp"
@@ -61,10 +62,28 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   out << "time step: " << dt0 * 1e9 << " ns at start (cfl " << s.cfl << ", fastest signal " << signal
       << " m/s); at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
   for (const std::string& w : scene_warnings(s)) out << "warning: " << w << "\n";
-  out << "effects: plasticity " << (s.effects.plasticity ? "on" : "off") << ", thermal "
-      << (s.effects.thermal ? "on" : "off") << ", artificial viscosity "
-      << (s.effects.artificial_viscosity ? "on" : "off") << ", voids " << (s.porosity > 1.0 ? "on" : "off")
-      << "; update scheme " << (s.update_scheme == UpdateScheme::musl ? "MUSL" : "USL") << "\n";
+  // Every effect the run simulates, and none that it does not.
+  std::vector<std::string> on;
+  if (s.effects.plasticity) on.push_back(s.effects.thermal_softening ? "plasticity (with thermal softening)" : "plasticity");
+  if (s.effects.thermal) on.push_back("thermal");
+  if (s.effects.artificial_viscosity) {
+    std::ostringstream av;
+    av << "artificial viscosity (A1 " << s.av_linear << ", A2 " << s.av_quadratic << ")";
+    on.push_back(av.str());
+    if (model.heat_flux_beta > 0.0) {
+      std::ostringstream hf;
+      hf << "artificial heat flux (beta " << model.heat_flux_beta << ")";
+      on.push_back(hf.str());
+    }
+  }
+  if (s.volumetric_smoothing) on.push_back("volumetric smoothing");
+  if (s.effects.spall) on.push_back("spall");
+  if (model.conducts_heat()) on.push_back("heat conduction");
+  if (s.porosity > 1.0) on.push_back("voids");
+  out << "effects:";
+  for (std::size_t k = 0; k < on.size(); ++k) out << (k ? ", " : " ") << on[k];
+  if (on.empty()) out << " none";
+  out << "; update scheme " << (s.update_scheme == UpdateScheme::musl ? "MUSL" : "USL") << "\n";
   const std::size_t per_point = st.particles.bytes_per_point() + step_scratch_bytes<D>(s);
   const double bytes = static_cast<double>(simulated) * static_cast<double>(per_point) +
                        static_cast<double>(g.nodes()) * static_cast<double>(Grid<D>::bytes_per_node());

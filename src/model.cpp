@@ -52,6 +52,8 @@ Model::Model(const Scene& s)
   if (s.effects.thermal) thermal.emplace(s.material, s.temperature_model, s.paper_temperature);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;
+  volumetric_smoothing = s.volumetric_smoothing;
+  if (s.effects.thermal && s.effects.artificial_viscosity) heat_flux_beta = s.av_heat_flux;
   if (s.effects.heat_conduction && s.material.thermal_conductivity > 0.0) {
     conductivity = s.material.thermal_conductivity;
     diffusivity = conductivity / (s.material.density * s.material.specific_heat);
@@ -60,6 +62,10 @@ Model::Model(const Scene& s)
 
 double Model::limiting_compression() const {
   return std::visit([](const auto& e) { return e.limiting_compression(); }, eos);
+}
+
+double Model::eos_fit_limit() const {
+  return std::visit([](const auto& e) { return e.fit_limit(); }, eos);
 }
 
 double Model::shear_modulus() const {

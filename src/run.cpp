@@ -70,6 +70,9 @@ std::string describe_result(const RunResult& r) {
   out << "relative error: mass " << r.mass_error << ", momentum " << r.momentum_error << ", energy " << r.energy_error
       << "\n";
   out << "porosity (from material points): " << r.porosity << " with " << r.voids << " voids\n";
+  if (r.beyond_eos_fit > 0)
+    out << "warning: up to " << r.beyond_eos_fit << " material points were compressed past the equation of state's fit "
+        << "(J < " << r.beyond_eos_fit_J << ", fit_particle_velocity): their states are extrapolated\n";
   out << "outputs: " << r.output_dir << "\n";
   return out.str();
 }

@@ -301,10 +301,21 @@ const std::vector<Key>& keys() {
                      "advance material nothing has reached yet (ahead of the fastest signal) in closed form, "
                      "x += v0 dt, leaving it out of the transfers; off: compute it (the same to round-off)",
                      FIELD(skip_unreached)));
+    k.push_back(flag("volumetric_smoothing", "off",
+                     "each point's rate of volume change from the grid's mass-weighted field of it, so the points "
+                     "of a cell compress together and no single point is over-compressed (collapse foci, ringing)",
+                     FIELD(volumetric_smoothing)));
     k.push_back(quantity("av_linear", D::none, non_negative(), "0.2",
-                         "linear artificial viscosity coefficient A1", FIELD(av_linear)));
+                         "linear artificial viscosity coefficient A1 (0.75 gives the exact elastic-plastic two-wave "
+                         "state behind the shock, tests/test_two_wave.cpp; 0.2 rings it below yield, but heats the "
+                         "material near the impact plane less: README, Method)", FIELD(av_linear)));
     k.push_back(quantity("av_quadratic", D::none, non_negative(), "2",
                          "quadratic artificial viscosity coefficient A2", FIELD(av_quadratic)));
+    k.push_back(quantity("av_heat_flux", D::none, closed(0.0, 10.0), "0",
+                         "artificial heat flux coefficient beta (Noh): where the viscosity acts, heat is conducted "
+                         "with diffusivity beta h (A1 c + A2 h |div v|), against the excess heating where converging "
+                         "flows stagnate; 0: none (needs thermal = on)",
+                         FIELD(av_heat_flux)));
     k.push_back(integer("seed", closed(0, 9.0e18), "1", "random seed of the void layout",
                         FIELD(seed)));
     // Effects
@@ -384,6 +395,19 @@ const std::vector<Key>& keys() {
                          FIELD(material.thermal_conductivity)));
     k.push_back(quantity("initial_temperature", D::temperature, positive(), "300 K",
                          "initial temperature T0", FIELD(material.initial_temperature)));
+    k.push_back(quantity("cohesive_energy", D::specific_energy, positive(), "12.1 MJ/kg",
+                         "cohesive energy, with bounded_expansion = on: the expanded branch of the equation of state binds with it (Rose's "
+                         "universal binding curve; tension at most 13.2 GPa for aluminium, zero at full expansion)",
+                         FIELD(material.cohesive_energy)));
+    k.push_back(flag("bounded_expansion", "off",
+                     "on: the expanded branch of the equation of state is Rose's binding curve with cohesive_energy "
+                     "(tension bounded, zero at full expansion; past its peak the material cavitates, a material "
+                     "instability: use with spall = on); off: the linear branch P = rho0 c0^2 (1 - V/V0), unbounded",
+                     FIELD(material.bound_expansion)));
+    k.push_back(quantity("fit_particle_velocity", D::speed, positive(), "6 km/s",
+                         "the largest particle velocity the Us-up fit describes (217 GPa on the aluminium Hugoniot); "
+                         "points compressed past its Hugoniot state are counted as outside the equation of state's range",
+                         FIELD(material.fit_particle_velocity)));
     // Output
     k.push_back(text("output_dir", "output", "directory for regions.csv, snapshots and the summary (no control characters, no '#')",
                      FIELD(output_dir)));

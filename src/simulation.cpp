@@ -25,13 +25,13 @@ bool bin_points(StripBins& bins, const Particles<D>& pts, PointRange range, cons
 // The kernels for one choice of shape function and laws: every combination the variants of
 // model.hpp allow is instantiated by std::visit, none is listed by hand.
 template <int D, class Shape, class Eos, class Strength, class Viscosity, class Failure>
-Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction, bool conduction) {
+Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction, bool conduction, bool smoothing, bool heat_flux) {
   constexpr bool stress = Strength::has_stress;
   Kernels<D> k{};
   k.support = Shape::support;
   k.first_row = Shape::template first_row<D>;
   k.bin = bin_points<D, Shape>;
-  k.to_grid = particles_to_grid<D, Shape, stress>;
+  k.to_grid = smoothing ? particles_to_grid<D, Shape, stress, true> : particles_to_grid<D, Shape, stress>;
   const bool musl = scheme == UpdateScheme::musl, blend = flip_fraction < 1.0;
   k.velocity_to_points = musl ? (blend ? grid_to_particles_velocity<D, Shape, true, true>
                                        : grid_to_particles_velocity<D, Shape, true, false>)
@@ -40,6 +40,11 @@ Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction, bool conductio
   k.gradient_work_and_move = velocity_gradient_work_and_move<D, Shape, stress>;
   k.update_points = update_all_points<D, Eos, Strength, Viscosity, Failure>;
   if (conduction) k.conduct = conduct_heat<D, Shape>;
+  if (heat_flux) k.heat_flux = artificial_heat_flux<D, Shape>;
+  if (smoothing) {
+    k.smooth_pressure = smooth_pressure<D, Shape>;
+    k.smooth_volume_rate = smooth_volume_rate<D, Shape>;
+  }
   return k;
 }
 
@@ -49,7 +54,7 @@ Kernels<D> kernels_for(const Model& m) {
       [&](auto shape, const auto& eos, const auto& strength, const auto& viscosity, const auto& failure) {
         return kernels_for<D, decltype(shape), std::decay_t<decltype(eos)>, std::decay_t<decltype(strength)>,
                            std::decay_t<decltype(viscosity)>, std::decay_t<decltype(failure)>>(
-            m.scheme, m.flip_fraction, m.conducts_heat());
+            m.scheme, m.flip_fraction, m.conducts_heat(), m.volumetric_smoothing, m.heat_flux_beta > 0.0);
       },
       m.shape, m.eos, m.strength, m.viscosity, m.failure);
 }
@@ -105,6 +110,9 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
   if (model_.skip_unreached && clock.unreached_tail != Clock::kNoneSaved)
     unreached_ = UnreachedMaterial<D>(scene, model_, points_, clock.unreached_head, clock.unreached_tail, comm);
   remember_unreached();
+  heat_flux_.beta = model_.heat_flux_beta;
+  heat_flux_.cell_size = model_.cell_size;
+  heat_flux_.specific_heat = scene.material.specific_heat;
   heat_.conductivity = model_.conductivity;
   heat_.specific_heat = scene.material.specific_heat;
   if (model_.conducts_heat())
@@ -320,10 +328,14 @@ StepStatus Simulation<D>::step(double dt) {
   const RowRange rows = bins_.rows();
   const bool musl = model_.scheme == UpdateScheme::musl;
   grid_.reset(rows);                                                   // reset grid
+  if (kernels_.smooth_pressure)                                        // (P + q)-bar_p for P2G
+    kernels_.smooth_pressure(points_, reached, bins_, grid_.geo, stencils_, halo_, plane_, grid_, smoothing_);
   kernels_.to_grid(points_, bins_, grid_, stencils_, halo_);           // P2G: m_i, p_i, f_i (and N_ip)
   for (auto& e : effects_) e->after_to_grid(grid_, rows);              //   (symmetry plane: the mirror's share)
   if (kernels_.conduct)                                                //   heat conduction: E_p
     kernels_.conduct(points_, reached, bins_, grid_, stencils_, halo_, *model_.thermal, heat_, plane_, dt);
+  if (kernels_.heat_flux)                                              //   artificial heat flux: E_p
+    kernels_.heat_flux(points_, reached, bins_, grid_, stencils_, halo_, *model_.thermal, heat_flux_, plane_, dt);
   update_grid_momentum(grid_, rows, dt);                               // a_i, v_i^{n+1}
   for (auto& e : effects_) e->after_grid_update(grid_, rows, dt);      //   (boundary conditions)
   kernels_.velocity_to_points(points_, reached, bins_, grid_, stencils_, halo_, dt,  // G2P: FLIP (/PIC) v_p
@@ -336,7 +348,11 @@ StepStatus Simulation<D>::step(double dt) {
   const std::size_t left = kernels_.gradient_work_and_move(            // L_p, work_p, x_p
       points_, reached, grid_, stencils_, musl ? grid_.v_remap : grid_.v, dt);
   unreached_.advance(points_, dt);                                     //   the rest: x_p += v0 dt
-  StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt);  // E, F, s, P, q
+  if (kernels_.smooth_volume_rate)                                     //   tr L_p, work_p: smoothed
+    kernels_.smooth_volume_rate(points_, reached, bins_, grid_, stencils_, halo_, plane_,
+                                musl ? grid_.v_remap : grid_.v, dt, smoothing_);
+  const double* volume_rate = kernels_.smooth_volume_rate ? smoothing_.volume_rate.data() : nullptr;
+  StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt, volume_rate);  // E, F, s, P, q
   StepStatus effect;  // MPI: the effects' checks are agreed with the step's (one collective)
   if (comm_->parallel())
     for (auto& e : effects_)
@@ -427,6 +443,15 @@ Grid<D> Simulation<D>::gathered_grid(RowRange& rows) const {
   }
   if (rows.end <= rows.begin) rows = {};
   return whole;
+}
+
+template <int D>
+std::size_t Simulation<D>::points_beyond_eos_fit() const {
+  const double J_fit = model_.eos_fit_limit();
+  std::int64_t n = 0;
+#pragma omp parallel for schedule(static) reduction(+ : n)
+  for (std::size_t p = 0; p < points_.size(); ++p) n += points_.material_J(p) < J_fit ? 1 : 0;
+  return static_cast<std::size_t>(comm_->sum(n));
 }
 
 template <int D>

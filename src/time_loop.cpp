@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -85,6 +86,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
     const double tol = 1e-9 * dt;
     if (sim.time() >= event_time(sch.next_sample, scene.sample_interval) - tol) {
       out.sample(sim, dt);
+      result.beyond_eos_fit = std::max(result.beyond_eos_fit, sim.points_beyond_eos_fit());
       sch.next_sample = next_event_after(sim.time(), scene.sample_interval, tol);
       status = sim.check_at_sample();
       failed_at_sample = !status.ok();
@@ -134,6 +136,8 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
     if (!snapshot_written_at(sch, scene, sim.time(), tol)) take_snapshot();
   }
 
+  result.beyond_eos_fit = std::max(result.beyond_eos_fit, sim.points_beyond_eos_fit());
+  result.beyond_eos_fit_J = sim.model().eos_fit_limit();
   finish_result(result, sim, run.initial, out.totals(sim), start_steps);
   omp_set_num_threads(all_threads);
   if (comm.root()) write_summary_json(dir / "summary.json", result);
@@ -162,7 +166,8 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
                "  \"mass_error\": %s,\n  \"momentum_error\": %s,\n  \"energy_error\": %s,\n"
                "  \"porosity\": %s,\n  \"voids\": %zu,\n  \"symmetry\": %s,\n  \"dimension\": %d,\n  \"ranks\": %d,\n"
                "  \"imbalance\": %s,\n  \"mpi_bytes_per_step\": %s,\n  \"mpi_messages_per_step\": %s,\n"
-               "  \"mpi_seconds\": %s,\n  \"mpi_seconds_least\": %s\n}\n",
+               "  \"mpi_seconds\": %s,\n  \"mpi_seconds_least\": %s,\n  \"beyond_eos_fit\": %zu,\n"
+               "  \"eos_fit_J\": %s\n}\n",
                r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps),
                json_number(r.start_time).c_str(), json_number(r.end_time).c_str(), json_number(r.wall_seconds).c_str(),
                r.points, json_number(r.point_steps_per_second).c_str(), r.threads,
@@ -171,7 +176,7 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
                json_number(r.porosity).c_str(), r.voids, r.symmetry ? "true" : "false", r.dimension, r.ranks,
                json_number(r.imbalance).c_str(), json_number(r.mpi_bytes_per_step).c_str(),
                json_number(r.mpi_messages_per_step).c_str(), json_number(r.mpi_seconds).c_str(),
-               json_number(r.mpi_seconds_least).c_str());
+               json_number(r.mpi_seconds_least).c_str(), r.beyond_eos_fit, json_number(r.beyond_eos_fit_J).c_str());
   flush_or_throw(f.get(), path.string());
   f.reset();
   fs::rename(tmp, path);

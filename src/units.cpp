@@ -18,7 +18,7 @@ struct Unit {
 };
 
 // Spellings a physicist writes. Order matters only for accepted_units() listings.
-constexpr std::array<Unit, 33> kUnits{{
+constexpr std::array<Unit, 36> kUnits{{
     {"m", Dimension::length, 1, 1},
     {"cm", Dimension::length, 1, 1e2},
     {"mm", Dimension::length, 1, 1e3},
@@ -52,6 +52,9 @@ constexpr std::array<Unit, 33> kUnits{{
     {"J/(kg*K)", Dimension::specific_heat, 1, 1},
     {"W/(m K)", Dimension::conductivity, 1, 1},
     {"W/m/K", Dimension::conductivity, 1, 1},
+    {"J/kg", Dimension::specific_energy, 1, 1},
+    {"kJ/kg", Dimension::specific_energy, 1e3, 1},
+    {"MJ/kg", Dimension::specific_energy, 1e6, 1},
 }};
 
 std::string_view dimension_word(Dimension dim) {
@@ -65,6 +68,7 @@ std::string_view dimension_word(Dimension dim) {
     case Dimension::temperature: return "a temperature";
     case Dimension::specific_heat: return "a specific heat";
     case Dimension::conductivity: return "a thermal conductivity";
+    case Dimension::specific_energy: return "an energy per mass";
   }
   return "?";
 }
@@ -107,6 +111,7 @@ std::string_view si_unit(Dimension dim) {
     case Dimension::temperature: return "K";
     case Dimension::specific_heat: return "J/(kg K)";
     case Dimension::conductivity: return "W/(m K)";
+    case Dimension::specific_energy: return "J/kg";
   }
   return "";
 }

@@ -4,7 +4,9 @@
 // and rewritten once since, when P2G began keeping its stencils for the later passes (the weights are
 // the same numbers, but FMA contraction differs when they are loaded rather than computed inline:
 // field sums moved by 1e-16 to 3e-14 relative in the gimp and bilinear cases, the default case not at all),
-// and when the work mismatch in the clock became an exact sum (only the clock changed).
+// and when the work mismatch in the clock became an exact sum (only the clock changed), and when the
+// equation of state began to carry its reference energy and the point update its volume rate
+// (issue 28: the same arithmetic regrouped, FMA contraction moved field sums by 1e-16 to 4e-13).
 //
 // Bitwise where that is meaningful: floating-point results depend on the compiler and on the
 // instructions it may use (FMA contraction under -march=native), so the reference records the build

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "mpmshock/exact_sum.hpp"
@@ -33,6 +34,9 @@ struct PointState {
   double E_stored = 0.0;       // in/out: the cold work stored in E [J/kg]
   double plastic_heat = 0.0;   // in/out: the plastic work turned to heat [J/kg] (temperature_model = paper)
   double work_mismatch = 0.0;  // out: work minus the trapezoid-rule work of the point's own deformation
+  // in: the rate of volume change F follows, tr L (NaN) unless volumetric smoothing gives its own
+  // (volumetric_smoothing.hpp); the deviatoric rate is always L's.
+  double volume_rate = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The energy-consistency diagnostic of a point's step: the work it was given (the exact work of the
@@ -58,6 +62,8 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
                                                   [[maybe_unused]] const Failure& failure = {},
                                                   [[maybe_unused]] double taylor_quinney = 1.0) {
   const StrainRate<D> rate = strain_rate(st.L);
+  const double volume_rate = std::isnan(st.volume_rate) ? trace(st.L) : st.volume_rate;
+  const double volume_shift = (volume_rate - trace(st.L)) / D;  // 0 without smoothing
   const double J_before = det(st.F), pq_before = st.P + st.q;
   [[maybe_unused]] const Deviator<D> s_before = st.s;
 
@@ -65,10 +71,10 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
   // viscous work alike), which is what the points' kinetic energy lost.
   st.E += st.work;
 
-  // Kinematics: F^{n+1} = (I + dt L) F^n.
+  // Kinematics: F^{n+1} = (I + dt L) F^n, L with the volume rate's trace.
   Mat<D> A;
   for (int i = 0; i < D; ++i)
-    for (int j = 0; j < D; ++j) A(i, j) = i == j ? 1.0 + dt * st.L(i, j) : dt * st.L(i, j);
+    for (int j = 0; j < D; ++j) A(i, j) = i == j ? 1.0 + dt * (st.L(i, j) + volume_shift) : dt * st.L(i, j);
   st.F = product(A, st.F);
   const double J = det(st.F);
   if (!(J > eos.limiting_compression())) return -1.0;
@@ -108,10 +114,10 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
     return std::sqrt(c2);
   } else {
     const double c_bulk = std::sqrt(c2_bulk);
-    st.q = viscosity.pressure(rho, c_bulk, h, rate.trace());
+    st.q = viscosity.pressure(rho, c_bulk, h, volume_rate);
     own_work_mismatch(st, eos.rho0(), J_before, J, pq_before, s_before, dt);
     // Fastest signal at this point: longitudinal sound speed plus the viscous speed.
-    const double Q = viscosity.signal(c_bulk, h, rate.trace());
+    const double Q = viscosity.signal(c_bulk, h, volume_rate);
     return Q + std::sqrt(Q * Q + c2);
   }
 }
@@ -123,8 +129,10 @@ struct StressUpdateResult {
 };
 
 // The update of every point, for one choice of laws.
+// `volume_rate`: the smoothed rates of volume change (volumetric_smoothing.hpp), or null.
 template <int D, class Eos, class Strength, class Viscosity, class Failure>
-StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const Model& model, double dt) {
+StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const Model& model, double dt,
+                                     const double* volume_rate) {
   const Eos& eos = std::get<Eos>(model.eos);
   const Strength& strength = std::get<Strength>(model.strength);
   const Viscosity& viscosity = std::get<Viscosity>(model.viscosity);
@@ -142,6 +150,7 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(max : max_signal) reduction(min : first_bad)
   for (std::size_t p = range.begin; p < range.end; ++p) {
     PointState<D> st{pts.L[p], pts.work[p], pts.F[p], pts.E[p], pts.P[p], pts.q[p], {}, {}, 0.0};
+    if (volume_rate) st.volume_rate = volume_rate[p];
     if constexpr (Strength::has_stress) {
       st.s = pts.s[p];
       st.eps_p = pts.eps_p[p];

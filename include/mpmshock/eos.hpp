@@ -1,9 +1,27 @@
-// Mie-Grüneisen equation of state referenced to the linear Us-up Hugoniot
-// (physics-notes section 2), with gamma*rho constant.
+// Mie-Grüneisen equation of state referenced to the linear Us-up Hugoniot in compression
+// (physics-notes section 2) and to a bounded cold curve in expansion, with gamma*rho constant:
+// P = P_r(J) + gamma0 rho0 (E - E_r(J)).
 //
 // State variables: J = V/V0 (specific volume over reference specific volume; for a material
 // point J = det F) and E, specific internal energy [J/kg] relative to the reference state.
 // eta = 1 - J is the compression.
+//
+// Compression (J < 1): P_r = P_H = rho0 c0^2 eta / (1 - s eta)^2, E_r = E_H = P_H eta / (2 rho0).
+// The linear Us-up line is a fit to data up to some particle velocity (fit_particle_velocity): a
+// point compressed past that Hugoniot state, J < fit_limit(), is outside what the fit knows
+// (the runs count such points: summary.json "beyond_eos_fit"), and at the pole eta = 1/s the
+// state is refused (a bad state).
+//
+// Expansion (J > 1): the universal binding-energy relation of Rose, Smith, Guinea and Ferrante
+// (1984) on the Wigner-Seitz radius r = r0 J^(1/3), a = (r - r0)/l:
+//   E_r = E_coh [1 - (1 + a) e^(-a)],  P_r = -rho0 dE_r/dJ = -rho0 c0^2 x0 a e^(-a) J^(-2/3),
+//   a = 3 (J^(1/3) - 1) / x0,  x0 = sqrt(E_coh) / c0,
+// with l fixed by the bulk modulus: P_r = -rho0 c0^2 (J - 1) + O((J - 1)^2), the slope of the
+// compression branch at J = 1. The tension is bounded (for aluminium, E_coh = 12.1 MJ/kg: at most
+// 13.2 GPa, at J = 1.55) and returns to zero as the material expands toward its cohesive energy;
+// the linear branch P = rho0 c0^2 (1 - J) it replaces gave -49 GPa at J = 1.6 and more beyond.
+// Past the tension's peak the bulk modulus (dP/dJ at fixed E) is negative: the material cavitates
+// (mechanically unstable), as real metals do well before it (spall = on models that).
 #pragma once
 
 #include <cmath>
@@ -17,21 +35,25 @@ class MieGruneisen {
   MieGruneisen() = default;
   explicit MieGruneisen(const Material& mat)
       : rho0_(mat.density), s_(mat.hugoniot_slope), gamma0_(mat.gruneisen_gamma),
-        K0_(mat.density * mat.sound_speed * mat.sound_speed) {}
+        K0_(mat.density * mat.sound_speed * mat.sound_speed), E_coh_(mat.cohesive_energy),
+        x0_(std::sqrt(mat.cohesive_energy) / mat.sound_speed), rose_(mat.bound_expansion),
+        J_fit_(1.0 - mat.fit_particle_velocity / (mat.sound_speed + mat.hugoniot_slope * mat.fit_particle_velocity)) {}
 
   double rho0() const { return rho0_; }
 
   // Smallest J the Us-up Hugoniot reaches: P_H diverges at eta = 1/s.
   double limiting_compression() const { return 1.0 - 1.0 / s_; }
+  // J of the Hugoniot state at the fit's largest particle velocity u: 1 - u / (c0 + s u).
+  double fit_limit() const { return J_fit_; }
 
-  // P_H = rho0 c0^2 eta / (1 - s eta)^2 in compression; rho0 c0^2 eta in tension (errata row 3).
+  // The reference pressure P_r: the Hugoniot's in compression, Rose's cold curve in expansion.
   double hugoniot_pressure(double J) const { return hugoniot(J).pressure; }
 
-  // dP_H/deta, for the sound speed.
+  // dP_r/deta, for the sound speed.
   double hugoniot_pressure_slope(double J) const { return hugoniot(J).slope; }
 
-  // E_H = P_H (V0 - V) / 2 per unit mass: eta P_H / (2 rho0).
-  double hugoniot_energy(double J) const { return 0.5 * hugoniot_pressure(J) * (1.0 - J) / rho0_; }
+  // The reference energy E_r: E_H = eta P_H / (2 rho0) in compression, Rose's in expansion.
+  double hugoniot_energy(double J) const { return hugoniot(J).energy; }
 
   // (dP/dE)_V = gamma(V)/V = gamma0 rho0, constant because gamma*rho is.
   double gamma_rho() const { return gamma0_ * rho0_; }
@@ -50,30 +72,47 @@ class MieGruneisen {
   // P = P_H(V) + (gamma/V) (E - E_H(V)).
   double pressure(double J, double E) const { return mie_gruneisen(hugoniot(J), J, E); }
 
-  // Isentropic bulk sound speed squared, c^2 = V^2 [ -(dP/dV)_E + P (dP/dE)_V ], written in eta:
-  // c^2 = (J^2/rho0) [ P_H' (1 - gamma0 eta / 2) - gamma0 P_H / 2 + gamma0 P ].
-  // Can turn negative in strong tension; callers use it only for time steps and viscosity.
+  // Isentropic bulk sound speed squared, c^2 = V^2 [ -(dP/dV)_E + P (dP/dE)_V ] =
+  // (J^2/rho0) [ P_r' + gamma0 rho0 dE_r/deta + gamma0 P ], P_r' = dP_r/deta: on the Hugoniot
+  // (J^2/rho0) [ P_H' (1 - gamma0 eta / 2) - gamma0 P_H / 2 + gamma0 P ], on the cold curve
+  // (dE_r/deta = P_r/rho0) (J^2/rho0) [ P_r' - gamma0 P_r + gamma0 P ].
+  // Negative past the cold curve's peak tension; callers use it only for time steps and viscosity.
   double sound_speed_squared(double J, double P) const { return bulk_sound_speed_squared(hugoniot(J), J, P); }
 
  private:
   struct Hugoniot {
-    double pressure, slope;  // P_H and dP_H/deta
+    double pressure, slope, energy;  // P_r, dP_r/deta, E_r
+    double stiffness;                // P_r' + gamma0 rho0 dE_r/deta, the sound speed's bracket less gamma0 P
   };
   Hugoniot hugoniot(double J) const {
     const double eta = 1.0 - J;
-    if (eta <= 0.0) return {K0_ * eta, K0_};
+    if (eta < 0.0) {
+      if (rose_) return cold_expansion(J);
+      const double P = K0_ * eta;  // the linear branch (errata row 3)
+      return {P, K0_, 0.5 * P * eta / rho0_, K0_ * (1.0 - 0.5 * gamma0_ * eta) - 0.5 * gamma0_ * P};
+    }
     const double inv_d = 1.0 / (1.0 - s_ * eta);
-    return {K0_ * eta * inv_d * inv_d, K0_ * (1.0 + s_ * eta) * inv_d * inv_d * inv_d};
+    const double P = K0_ * eta * inv_d * inv_d, slope = K0_ * (1.0 + s_ * eta) * inv_d * inv_d * inv_d;
+    return {P, slope, 0.5 * P * eta / rho0_, slope * (1.0 - 0.5 * gamma0_ * eta) - 0.5 * gamma0_ * P};
   }
-  double mie_gruneisen(const Hugoniot& h, double J, double E) const {
-    return h.pressure + gamma_rho() * (E - 0.5 * h.pressure * (1.0 - J) / rho0_);
+  // Rose's universal binding curve (see the top of the file).
+  Hugoniot cold_expansion(double J) const {
+    const double cbrt_J = std::cbrt(J), a = 3.0 * (cbrt_J - 1.0) / x0_, decay = std::exp(-a);
+    const double inv_J23 = 1.0 / (cbrt_J * cbrt_J);
+    const double P = -K0_ * x0_ * a * decay * inv_J23;
+    // dP/deta = -dP/dJ = K0 e^(-a) [ (1 - a) J^(-4/3) - (2/3) x0 a J^(-5/3) ]
+    const double slope = K0_ * decay * inv_J23 * inv_J23 * ((1.0 - a) - (2.0 / 3.0) * x0_ * a / cbrt_J);
+    const double E = E_coh_ * (1.0 - (1.0 + a) * decay);
+    return {P, slope, E, slope - gamma0_ * P};
   }
+  double mie_gruneisen(const Hugoniot& h, double, double E) const { return h.pressure + gamma_rho() * (E - h.energy); }
   double bulk_sound_speed_squared(const Hugoniot& h, double J, double P) const {
-    const double eta = 1.0 - J;
-    return (J * J / rho0_) * (h.slope * (1.0 - 0.5 * gamma0_ * eta) - 0.5 * gamma0_ * h.pressure + gamma0_ * P);
+    return (J * J / rho0_) * (h.stiffness + gamma0_ * P);
   }
 
   double rho0_ = 2700.0, s_ = 1.34, gamma0_ = 1.96, K0_ = 2700.0 * 5350.0 * 5350.0;
+  bool rose_ = false;
+  double E_coh_ = 12.1e6, x0_ = std::sqrt(12.1e6) / 5350.0, J_fit_ = 1.0 - 6000.0 / (5350.0 + 1.34 * 6000.0);
 };
 
 }  // namespace mpmshock

@@ -17,6 +17,14 @@ struct Material {
   double specific_heat = 880.0;          // c_v [J/(kg K)]
   double thermal_conductivity = 237.0;   // k [W/(m K)], used only with heat conduction on
   double initial_temperature = 300.0;    // T0 [K]
+  // Cohesive (sublimation) energy per mass: 3.39 eV per atom for aluminium (Kittel), the energy
+  // of the expanded branch of the equation of state (eos.hpp) [J/kg].
+  double cohesive_energy = 12.1e6;
+  // Expansion on that bounded binding curve (true) or on the linear branch P = rho0 c0^2 (1 - J).
+  bool bound_expansion = false;
+  // The largest particle velocity the Us-up fit describes: compression past its Hugoniot state
+  // is counted as outside the equation of state's range (eos.hpp) [m/s].
+  double fit_particle_velocity = 6000.0;
 
   // G = E / (2 (1 + nu)): the only elastic constant the deviatoric update uses (physics-notes 1).
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }

@@ -50,11 +50,15 @@ struct Model {
   double diffusivity = 0.0;    // k / (rho0 c_v) [m2/s]
   bool symmetry_plane = false;  // symmetry = on: the target alone, mirrored about y = 0
   bool skip_unreached = false;  // advance material nothing has reached in closed form (unreached.hpp)
+  bool volumetric_smoothing = false;  // volumetric_smoothing.hpp
+  double heat_flux_beta = 0.0;  // the artificial heat flux's beta, 0 without (artificial_heat_flux.hpp)
 
   explicit Model(const Scene& s);
 
   // The smallest J = V/V0 the equation of state admits.
   double limiting_compression() const;
+  // The smallest J its fit describes (eos.hpp); below it the state is an extrapolation.
+  double eos_fit_limit() const;
   // The shear modulus G the longitudinal sound speed sees; 0 without strength.
   double shear_modulus() const;
   bool has_strength() const { return has_stress(strength); }

@@ -47,6 +47,9 @@ struct RunResult {
   double mass_error = 0.0, momentum_error = 0.0, energy_error = 0.0;  // relative, since t = 0
   double porosity = 1.0;                                             // from the material points
   std::size_t voids = 0;
+  // The most simulated points compressed past the equation of state's fit (eos.hpp) at any sample.
+  std::size_t beyond_eos_fit = 0;
+  double beyond_eos_fit_J = 0.0;  // the J = V/V0 the fit ends at
   std::string output_dir;
 };
 

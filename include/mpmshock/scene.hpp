@@ -96,8 +96,10 @@ struct Scene {
   double lindemann_a = 1.5;               // volume exponent of the Lindemann melt curve
   double flip_fraction = 1.0;  // share of FLIP in the point velocity update; the rest is PIC
   bool skip_unreached = true;  // advance material nothing has reached in closed form (unreached.hpp)
+  bool volumetric_smoothing = false;  // tr L_p from the grid's field of it (volumetric_smoothing.hpp)
   double av_linear = 0.2;
   double av_quadratic = 2.0;
+  double av_heat_flux = 0.0;  // beta of the artificial heat flux (artificial_heat_flux.hpp); 0: none
   std::int64_t seed = 1;
 
   // Output

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "mpmshock/artificial_heat_flux.hpp"
 #include "mpmshock/comm.hpp"
 #include "mpmshock/constitutive.hpp"
 #include "mpmshock/decomposition.hpp"
@@ -28,6 +29,7 @@
 #include "mpmshock/strip_bins.hpp"
 #include "mpmshock/symmetry_plane.hpp"
 #include "mpmshock/unreached.hpp"
+#include "mpmshock/volumetric_smoothing.hpp"
 
 namespace mpmshock {
 
@@ -43,7 +45,16 @@ struct Kernels {
                              const Halo<D>&, double dt, double flip_fraction);
   std::size_t (*gradient_work_and_move)(Particles<D>&, PointRange, const Grid<D>&, const StencilStore<D>&,
                                         const std::vector<Vec<D>>& u, double dt);
-  StressUpdateResult (*update_points)(Particles<D>&, PointRange, const Model&, double dt);
+  StressUpdateResult (*update_points)(Particles<D>&, PointRange, const Model&, double dt, const double* volume_rate);
+  // Volumetric smoothing's two passes, or null when the scene has none.
+  void (*smooth_pressure)(Particles<D>&, PointRange, const StripBins&, const GridGeometry<D>&, StencilStore<D>&,
+                          const Halo<D>&, const SymmetryPlane<D>*, const Grid<D>&, VolumetricSmoothing&);
+  void (*smooth_volume_rate)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
+                             const Halo<D>&, const SymmetryPlane<D>*, const std::vector<Vec<D>>&, double,
+                             VolumetricSmoothing&);
+  // The artificial heat flux, or null when the scene has none.
+  void (*heat_flux)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
+                    const Halo<D>&, const HugoniotTemperature&, ArtificialHeatFlux&, const SymmetryPlane<D>*, double dt);
   // Heat conduction, or null when the scene has none.
   void (*conduct)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
                   const Halo<D>&, const HugoniotTemperature&, HeatConduction&, const SymmetryPlane<D>*, double dt);
@@ -111,6 +122,8 @@ class Simulation {
   // The nodal mass and velocity of every rank's active rows in one whole grid at rank 0, and in
   // `rows` the rows they span (for a snapshot's /grid).
   Grid<D> gathered_grid(RowRange& rows) const;
+  // The points of every rank compressed past the equation of state's fit (a collective).
+  std::size_t points_beyond_eos_fit() const;
   // This rank's points the steps compute; the others nothing has reached yet (unreached.hpp).
   PointRange computed_points() const { return unreached_.computed(points_); }
 
@@ -164,6 +177,8 @@ class Simulation {
   StencilStore<D> stencils_;  // the step's shape weights, computed once by P2G
   Kernels<D> kernels_;
   HeatConduction heat_;
+  VolumetricSmoothing smoothing_;  // its scratch (volumetric_smoothing = on)
+  ArtificialHeatFlux heat_flux_;
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;
   const SymmetryPlane<D>* plane_ = nullptr;  // the symmetry plane among effects_ (symmetry = on), for conduction
   UnreachedMaterial<D> unreached_;

@@ -20,10 +20,11 @@ namespace mpmshock {
 
 constexpr std::size_t kNoPoint = std::numeric_limits<std::size_t>::max();
 
-// The Cauchy stress of a point, sigma = s - (P + q) I; without strength s = 0.
-template <int D, bool Strength>
+// The Cauchy stress of a point, sigma = s - (P + q) I; without strength s = 0. Smoothed: the
+// grid's (P + q)-bar in pts.work instead of the point's own (volumetric_smoothing.hpp).
+template <int D, bool Strength, bool Smoothed = false>
 inline Mat<D> cauchy_stress(const Particles<D>& pts, std::size_t p) {
-  const double pq = pts.P[p] + pts.q[p];
+  const double pq = Smoothed ? pts.work[p] : pts.P[p] + pts.q[p];
   Mat<D> sigma{};
   for (int d = 0; d < D; ++d) sigma(d, d) = -pq;
   if constexpr (Strength) {
@@ -42,7 +43,7 @@ inline Mat<D> cauchy_stress(const Particles<D>& pts, std::size_t p) {
 
 // P2G of mass, momentum and internal force; keeps each point's stencil for the rest of the step.
 // On MPI ranks the rows shared with a neighbour are summed across the two (halo.hpp).
-template <int D, class Shape, bool Strength>
+template <int D, class Shape, bool Strength, bool Smoothed = false>
 void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g, StencilStore<D>& store,
                        const Halo<D>& halo) {
   const GridGeometry<D>& geo = g.geo;
@@ -55,7 +56,7 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
     const double m = pts.m[p], V = pts.volume(p);
     Vec<D> mv;
     for (int d = 0; d < D; ++d) mv[d] = m * pts.v[p][d];
-    const Mat<D> sigma = cauchy_stress<D, Strength>(pts, p);
+    const Mat<D> sigma = cauchy_stress<D, Strength, Smoothed>(pts, p);
     for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
       g.m[i] += N * m;
       for (int d = 0; d < D; ++d) g.mv[i][d] += N * mv[d];

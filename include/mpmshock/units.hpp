@@ -17,6 +17,7 @@ enum class Dimension {
   temperature,    // K
   specific_heat,  // J/(kg K)
   conductivity,   // W/(m K)
+  specific_energy,  // J/kg
 };
 
 // The SI unit of a dimension, as the README and --check print it ("m/s"); "" for none.

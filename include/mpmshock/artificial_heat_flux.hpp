@@ -1,0 +1,96 @@
+// Artificial heat flux (av_heat_flux = beta > 0): the shock-capturing companion of the artificial
+// viscosity that Noh (1987) introduced against "wall heating", the excess entropy a viscous scheme
+// leaves where a converging flow stagnates (the focus of a collapsing void, a jet's tip meeting the
+// far wall). It conducts heat where and only while the viscosity acts, with the diffusivity of the
+// viscous scale, alpha_p = beta h (A1 c + A2 h |tr D|) = beta q_p / (rho_p |tr D_p|): zero outside
+// compression, so a steady shock's plateaus and uniform states are untouched (their temperature is
+// uniform), and the total energy is conserved to round-off.
+//
+//   1. nodal rate and temperature   r_i = sum_p N_ip m_p r_p / m_i,  T_i = sum_p N_ip m_p T_p / m_i
+//   2. point energy                 E_p += c_v sum_i N_ip r_i (T_i - T_p)
+//
+// with r_p = 1 - exp(-dt / tau_p), tau_p = h^2 / (pi^2 alpha_p) the decay time of the slowest
+// sub-cell temperature mode (wavelength 2h, as heat conduction's relaxation). Each point relaxes
+// toward its nodes' mean temperature at their rate; with r_i <= 1 the new temperature is a convex
+// combination (no new extremes, stable at any dt). Energy: sum_p m_p sum_i N_ip r_i (T_i - T_p)
+// = sum_i r_i (m_i T_i - sum_p N_ip m_p T_p) = 0 at every node. T is the energy model's temperature
+// T_H(J) + (E - E_H(J)) / c_v whatever temperature_model reports (the flux moves internal energy).
+//
+// It runs after P2G on the step's stencils and bins, with the states of the step's start, folds its
+// nodal sums across a symmetry plane and sums them across MPI ranks' shared rows as conduction does.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "mpmshock/grid.hpp"
+#include "mpmshock/halo.hpp"
+#include "mpmshock/parallel.hpp"
+#include "mpmshock/particles.hpp"
+#include "mpmshock/shape.hpp"
+#include "mpmshock/strip_bins.hpp"
+#include "mpmshock/symmetry_plane.hpp"
+#include "mpmshock/temperature.hpp"
+
+namespace mpmshock {
+
+struct ArtificialHeatFlux {
+  double beta = 0.0;           // alpha = beta q / (rho |tr D|)
+  double cell_size = 0.0;      // h
+  double specific_heat = 0.0;  // c_v
+  std::vector<double> node_rate, node_temperature;  // m_i r_i and m_i T_i, then r_i and T_i
+};
+
+template <int D, class Shape>
+void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
+                          const StencilStore<D>& store, const Halo<D>& halo, const HugoniotTemperature& thermal,
+                          ArtificialHeatFlux& flux, const SymmetryPlane<D>* plane, double dt) {
+  const GridGeometry<D>& geo = g.geo;
+  const auto& stencils = store.template of<Shape::support>();
+  const RowRange rows = bins.rows();
+  const std::size_t first = geo.row_start(rows.begin), last = geo.row_start(rows.end);
+  flux.node_rate.resize(geo.nodes());
+  flux.node_temperature.resize(geo.nodes());
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = first; i < last; ++i) flux.node_rate[i] = flux.node_temperature[i] = 0.0;
+  halo.zero(flux.node_rate, flux.node_temperature);
+
+  // The step's scratch holds T_p (written again by the velocity gradient later in the step).
+  std::vector<double>& T = pts.work;
+  const double pi2_dt_over_h2 = M_PI * M_PI * dt / (flux.cell_size * flux.cell_size);
+  bins.scatter([&](std::size_t p) {  // 1.
+    T[p] = thermal.temperature(pts.material_J(p), pts.thermal_energy(p));
+    const double rate_of_volume = -trace(pts.L[p]);
+    const double alpha = pts.q[p] > 0.0 && rate_of_volume > 0.0 ? flux.beta * pts.q[p] / (pts.density(p) * rate_of_volume) : 0.0;
+    const double r = -std::expm1(-alpha * pi2_dt_over_h2);
+    // A point in a bad state (a NaN the step will report) gives its nodes nothing, so the report
+    // names it and not its neighbours.
+    if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
+    const double mr = pts.m[p] * r, mT = pts.m[p] * T[p];
+    for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
+      flux.node_rate[i] += N * mr;
+      flux.node_temperature[i] += N * mT;
+    });
+  }, [&] { halo.between_colours(flux.node_rate, flux.node_temperature); },
+     [&] { halo.after_colours(flux.node_rate, flux.node_temperature); });
+  if (plane) {
+    plane->fold_scalar(g, flux.node_rate, rows);
+    plane->fold_scalar(g, flux.node_temperature, rows);
+  }
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = first; i < last; ++i) {
+    const double inv_m = g.m[i] > 0.0 ? 1.0 / g.m[i] : 0.0;
+    flux.node_rate[i] *= inv_m;
+    flux.node_temperature[i] *= inv_m;
+  }
+#pragma omp parallel for schedule(dynamic, kChunk)
+  for (std::size_t p = range.begin; p < range.end; ++p) {  // 2.
+    double heat = 0.0;
+    for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
+      heat += N * flux.node_rate[i] * (flux.node_temperature[i] - T[p]);
+    });
+    pts.E[p] += flux.specific_heat * heat;
+  }
+}
+
+}  // namespace mpmshock
