@@ -311,10 +311,10 @@ const std::vector<Key>& keys() {
                          "material near the impact plane less: README, Method)", FIELD(av_linear)));
     k.push_back(quantity("av_quadratic", D::none, non_negative(), "2",
                          "quadratic artificial viscosity coefficient A2", FIELD(av_quadratic)));
-    k.push_back(quantity("av_heat_flux", D::none, closed(0.0, 10.0), "0",
+    k.push_back(quantity("av_heat_flux", D::none, closed(0.0, 100.0), "10",
                          "artificial heat flux coefficient beta (Noh): where the viscosity acts, heat is conducted "
-                         "with diffusivity beta h (A1 c + A2 h |div v|), against the excess heating where converging "
-                         "flows stagnate; 0: none (needs thermal = on)",
+                         "with diffusivity beta h q / (rho c0), against the excess heating where converging flows "
+                         "stagnate (void-collapse foci); 0: none (needs thermal = on)",
                          FIELD(av_heat_flux)));
     k.push_back(integer("seed", closed(0, 9.0e18), "1", "random seed of the void layout",
                         FIELD(seed)));

@@ -113,6 +113,7 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
   heat_flux_.beta = model_.heat_flux_beta;
   heat_flux_.cell_size = model_.cell_size;
   heat_flux_.specific_heat = scene.material.specific_heat;
+  heat_flux_.sound_speed = scene.material.sound_speed;
   heat_.conductivity = model_.conductivity;
   heat_.specific_heat = scene.material.specific_heat;
   if (model_.conducts_heat())

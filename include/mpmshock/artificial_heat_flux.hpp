@@ -1,10 +1,12 @@
 // Artificial heat flux (av_heat_flux = beta > 0): the shock-capturing companion of the artificial
 // viscosity that Noh (1987) introduced against "wall heating", the excess entropy a viscous scheme
 // leaves where a converging flow stagnates (the focus of a collapsing void, a jet's tip meeting the
-// far wall). It conducts heat where and only while the viscosity acts, with the diffusivity of the
-// viscous scale, alpha_p = beta h (A1 c + A2 h |tr D|) = beta q_p / (rho_p |tr D_p|): zero outside
-// compression, so a steady shock's plateaus and uniform states are untouched (their temperature is
-// uniform), and the total energy is conserved to round-off.
+// far wall). It conducts heat where and only while the viscosity acts, with a diffusivity that
+// grows with the viscous pressure, alpha_p = beta h q_p / (rho_p c0) = beta h^2 |tr D| (A1 c + A2 h |tr D|) / c0:
+// zero outside compression and continuous as the compression starts (a diffusivity of the viscous
+// speed, beta h (A1 c + A2 h |tr D|), switched on by the sign of tr D, turned round-off in the rate
+// into differences of 1e-9 between a symmetric and a whole run), so uniform states and plateaus are
+// untouched, and the total energy is conserved to round-off.
 //
 //   1. nodal rate and temperature   r_i = sum_p N_ip m_p r_p / m_i,  T_i = sum_p N_ip m_p T_p / m_i
 //   2. point energy                 E_p += c_v sum_i N_ip r_i (T_i - T_p)
@@ -35,9 +37,10 @@
 namespace mpmshock {
 
 struct ArtificialHeatFlux {
-  double beta = 0.0;           // alpha = beta q / (rho |tr D|)
+  double beta = 0.0;           // alpha = beta h q / (rho c0)
   double cell_size = 0.0;      // h
   double specific_heat = 0.0;  // c_v
+  double sound_speed = 0.0;    // c0, the scale of the viscous pressure
   std::vector<double> node_rate, node_temperature;  // m_i r_i and m_i T_i, then r_i and T_i
 };
 
@@ -60,8 +63,7 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
   const double pi2_dt_over_h2 = M_PI * M_PI * dt / (flux.cell_size * flux.cell_size);
   bins.scatter([&](std::size_t p) {  // 1.
     T[p] = thermal.temperature(pts.material_J(p), pts.thermal_energy(p));
-    const double rate_of_volume = -trace(pts.L[p]);
-    const double alpha = pts.q[p] > 0.0 && rate_of_volume > 0.0 ? flux.beta * pts.q[p] / (pts.density(p) * rate_of_volume) : 0.0;
+    const double alpha = flux.beta * flux.cell_size * pts.q[p] / (pts.density(p) * flux.sound_speed);
     const double r = -std::expm1(-alpha * pi2_dt_over_h2);
     // A point in a bad state (a NaN the step will report) gives its nodes nothing, so the report
     // names it and not its neighbours.

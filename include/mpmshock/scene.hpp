@@ -99,7 +99,7 @@ struct Scene {
   bool volumetric_smoothing = false;  // tr L_p from the grid's field of it (volumetric_smoothing.hpp)
   double av_linear = 0.2;
   double av_quadratic = 2.0;
-  double av_heat_flux = 0.0;  // beta of the artificial heat flux (artificial_heat_flux.hpp); 0: none
+  double av_heat_flux = 10.0;  // beta of the artificial heat flux (artificial_heat_flux.hpp); 0: none
   std::int64_t seed = 1;
 
   // Output
