@@ -66,6 +66,11 @@ compare effects "$data/tiny_porous.scene" --set shape_function=gimp --set heat_c
 compare whole "$data/tiny_porous.scene" --set shape_function=bilinear --set flyer_mirror=off --set skip_unreached=off \
   --set paper_temperature=on "${probes[@]}"
 compare porous3d "$data/tiny_porous_3d.scene" --set probe.top=surface
+# The shock-capturing options (issue 28): volumetric smoothing's two nodal passes, with and
+# without the symmetry plane's fold, and the bounded expansion branch.
+compare smoothing "$data/tiny_porous.scene" --set volumetric_smoothing=on --set av_linear=0.75 \
+  --set bounded_expansion=on
+compare smoothing_whole "$data/tiny_porous.scene" --set volumetric_smoothing=on --set flyer_mirror=off
 
 # Restart on another number of ranks: from the middle snapshot of the 1-rank run, on 3 ranks, and
 # from the middle of a 2-rank run on 1 rank: the same files as the run straight through (probes.csv

@@ -111,8 +111,9 @@ class MieGruneisen {
   }
 
   double rho0_ = 2700.0, s_ = 1.34, gamma0_ = 1.96, K0_ = 2700.0 * 5350.0 * 5350.0;
+  double E_coh_ = 12.1e6, x0_ = std::sqrt(12.1e6) / 5350.0;
   bool rose_ = false;
-  double E_coh_ = 12.1e6, x0_ = std::sqrt(12.1e6) / 5350.0, J_fit_ = 1.0 - 6000.0 / (5350.0 + 1.34 * 6000.0);
+  double J_fit_ = 1.0 - 6000.0 / (5350.0 + 1.34 * 6000.0);
 };
 
 }  // namespace mpmshock
