@@ -26,8 +26,8 @@
 // kept, and the point update adds (tr L-bar - tr L) / D I to it for F alone (in plane strain a
 // shifted in-plane trace would put a spurious deviator into the zz direction).
 //
-// The passes use the step's stencils and bins (the pressure pass computes and stores the stencils
-// P2G then uses), fold their nodal sums across a symmetry plane (the fields are even in y) and sum
+// The passes use the step's stencils and bins (the pressure pass, before P2G, computes the stencils
+// and P2G computes the same ones again: a cost of the option, not yet shared), fold their nodal sums across a symmetry plane (the fields are even in y) and sum
 // them across the rows MPI ranks share first, as heat conduction does: the same bits on any number
 // of threads and ranks.
 #pragma once
@@ -67,8 +67,8 @@ void zero_active(const GridGeometry<D>& geo, RowRange rows, const Halo<D>& halo,
 
 }  // namespace detail
 
-// Before P2G: the stencils of the step, and the smoothed (P + q)-bar of every binned point in
-// pts.work (the step's scratch), which P2G then uses for the pressure part of the stress.
+// Before P2G: the smoothed (P + q)-bar of every binned point in pts.work (the step's scratch), which
+// P2G then uses for the pressure part of the stress.
 template <int D, class Shape>
 void smooth_pressure(Particles<D>& pts, PointRange range, const StripBins& bins, const GridGeometry<D>& geo,
                      StencilStore<D>& store, const Halo<D>& halo, const SymmetryPlane<D>* plane,
