@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 
 from .errors import PostError
+from .units import plain_spacing
 
 # Length units a hand-written region spec may use; the resolved scene always writes metres.
 # Decimal, so that '800 um' is the very double 8e-04 that the scene's 'region.B800' holds.
@@ -72,7 +73,7 @@ def _lengths(tokens, text):
 
 def parse_region(text):
     """RegionSpec from 'bottom Y1 H', 'top H' or 'band Y1 Y2' (metres unless a unit follows)."""
-    tokens = text.split()
+    tokens = plain_spacing(text).split()
     arity = {"bottom": 2, "top": 1, "band": 2}
     if not tokens or tokens[0] not in arity:
         raise PostError(f"region '{text}': expected 'bottom Y1 H', 'top H' or 'band Y1 Y2'")

@@ -15,6 +15,7 @@ from pathlib import Path
 
 from .errors import PostError
 from .scene import parse_region
+from .units import plain_spacing
 
 ROOT = Path(__file__).resolve().parents[2]  # the repository this package lives in
 
@@ -28,7 +29,8 @@ _UNIT_FACTORS = {
     "K": "1", "J/(kg K)": "1", "J/kg/K": "1", "J/(kg*K)": "1", "W/(m K)": "1", "W/m/K": "1",
     "J/kg": "1", "kJ/kg": "1e3", "MJ/kg": "1e6",
 }
-_NUMBER = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$")
+# ASCII digits and spaces, as the simulator's parser takes them (after plain_spacing).
+_NUMBER = re.compile(r"^\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$", re.ASCII)
 
 
 def mpmshock_binary():
@@ -37,13 +39,14 @@ def mpmshock_binary():
 
 
 def parse_value(text):
-    """SI float from '50 um', '50um', '1.2e-6' (a bare number is SI); a tuple of them from a
+    """SI float from '50 um', '50um', '1.2e-6' (a bare number is SI; any Unicode space and the Greek
+    mu read as the simulator reads them: units.plain_spacing); a tuple of them from a
     comma-separated list of quantities ('250 ns, 750 ns': snapshot_times); any other text (a word
     such as 'on' or 'musl', a region spec) comes back stripped, as a str."""
     if "," in text:
         items = tuple(parse_value(item) for item in text.split(","))
         return items if all(isinstance(item, float) for item in items) else text.strip()
-    match = _NUMBER.match(text)
+    match = _NUMBER.match(plain_spacing(text))
     if not match or (match.group(2) and match.group(2) not in _UNIT_FACTORS):
         return text.strip()
     try:

@@ -42,6 +42,19 @@ _OTHER_UNITS = {"pressure": {"MPa": 1e-6, "Pa": 1.0}, "density": {"kg/m3": 1.0}}
 TIME = Quantity("$t$", "ns", 1e9)
 LENGTH_FACTOR = 1e6  # m -> um
 
+# Every Unicode space (category Zs: no-break U+00A0, thin U+2009, narrow no-break U+202F, ...) as an
+# ASCII space, and the Greek small letter mu U+03BC as the micro sign U+00B5 that the unit tables
+# spell: they look the same, so a value written with them means the same (src/units.cpp,
+# plain_spacing, reads scenes so).
+_ZS_SPACES = "\u00a0\u1680" + "".join(map(chr, range(0x2000, 0x200B))) + "\u202f\u205f\u3000"
+_PLAIN = str.maketrans({**dict.fromkeys(_ZS_SPACES, " "), "\u03bc": "\u00b5"})
+
+
+def plain_spacing(text):
+    """The text with every Unicode space as ' ' and the Greek mu as the micro sign."""
+    return text.translate(_PLAIN)
+
+
 _TIME_SUFFIXES = {"ns": "1e-9", "us": "1e-6", "µs": "1e-6", "ms": "1e-3", "s": "1"}
 _TIME = re.compile(r"^\s*([-+0-9.eE]+)\s*(ns|us|µs|ms|s)\s*$")
 _LENGTH_SUFFIXES = {"m": "1", "mm": "1e-3", "um": "1e-6", "µm": "1e-6", "nm": "1e-9"}
@@ -63,7 +76,7 @@ def quantity(name, unit=None):
 
 def parse_time(text):
     """Seconds from '1200ns', '1.2us' or '1.2e-6s'; a bare number is refused as ambiguous."""
-    match = _TIME.match(text)
+    match = _TIME.match(plain_spacing(text))
     if not match:
         raise PostError(f"time '{text}': give a number with a unit, e.g. 1200ns, 1.2us or 1.2e-6s")
     try:
@@ -76,7 +89,7 @@ def parse_time(text):
 def parse_length(text):
     """Metres from '50um', '50 um', '0.05mm' or '5e-5' (a bare number is in metres, as in region
     specs and the resolved scene)."""
-    match = _LENGTH.match(text)
+    match = _LENGTH.match(plain_spacing(text))
     if not match:
         raise PostError(f"length '{text}': give a number in metres or with a unit, e.g. 50um, 0.05mm or 5e-5")
     try:

@@ -33,8 +33,9 @@ import pytest
 from conftest import SCRIPTS
 from mpmshock_post import converge, hugoniot
 from mpmshock_post.converge import Estimate, Level, Result, half_rise_time, plan_levels, richardson
-from mpmshock_post.scene import Scene
+from mpmshock_post.scene import Scene, parse_region
 from mpmshock_post.scene_input import key_defaults, parse_value, requested_scene, scene_differences
+from mpmshock_post.units import parse_length, parse_time
 
 CONVERGE = SCRIPTS / "mpmshock-converge"
 HEADER = ["level", "cell_size", "points", "steps", "wall_seconds", "region", "quantity", "value",
@@ -190,6 +191,27 @@ def test_parse_value_units():
     assert parse_value("on") == "on" and parse_value("5 furlongs") == "5 furlongs"
 
 
+MICRO_SIGN, GREEK_MU = "\u00b5", "\u03bc"
+SPACES = ("\u00a0", "\u2009", "\u202f", "\u3000")   # no-break, thin, narrow no-break, ideographic
+
+
+def test_micro_sign_greek_mu_and_unicode_spaces():
+    """Both micro characters for every micro unit, and any Unicode space as a space, as src/units.cpp
+    reads them; what the simulator refuses (Arabic-Indic digits, a line separator) stays text."""
+    for mu in (MICRO_SIGN, GREEK_MU):
+        assert parse_value(f"50 {mu}m") == 50e-6 and parse_value(f"50{mu}m") == 50e-6
+        assert parse_value(f"2 {mu}s") == 2e-6 and parse_time(f"1.2{mu}s") == 1.2e-6
+        assert parse_length(f"50 {mu}m") == 50e-6
+        assert parse_region(f"bottom 100 {mu}m 400{mu}m") == parse_region("bottom 100 um 400 um")
+    for space in SPACES:
+        assert parse_value(f"50{space}um") == 50e-6 and parse_value(f"1.2{space}km/s") == 1200.0
+        assert parse_value(f"900{space}J/(kg{space}K)") == 900.0
+        assert parse_value(f"250{space}ns,{space}750 ns") == (250e-9, 750e-9)
+        assert parse_time(f"60{space}ns") == 60e-9 and parse_length(f"5{space}mm") == 5e-3
+        assert parse_region(f"band{space}40{space}{GREEK_MU}m 160{space}um") == parse_region("band 40 um 160 um")
+    assert parse_value("\u0665\u0660 um") == "\u0665\u0660 um" and parse_value("5\u2028um") == "5\u2028um"
+
+
 # --- the command line and a real study --------------------------------------------------------------
 
 def converge_cli(binary, *args):
@@ -308,3 +330,4 @@ def test_bad_input(study, tmp_path):
     assert done.returncode == 1 and "B400:nonsense" in done.stderr
     done = converge_cli(study["binary"], study["scene"], "--out", tmp_path, "--window", "5", "10ns")
     assert done.returncode == 2
+
