@@ -70,6 +70,12 @@ ARRIVAL = "arrival_time"
 ORDER_RANGE = (0.5, 4.0)
 SHOCK_FRACTION = 0.1    # a region sees a shock when its plateau pressure is this share of the highest
 WITHIN_FACTOR = 3.0     # the .md's verdict: a true error within this multiple of the estimate
+MIN_LEVELS = 2          # one level has no error estimate; two give the fallback, three an observed order
+
+
+class UsageError(PostError):
+    """A request that no run could honour (a count, a path, a refinement the scene cannot take):
+    the command line reports it as argparse reports its own, with exit 2."""
 
 
 # --- the refinement plan ----------------------------------------------------------------------------
@@ -90,26 +96,30 @@ def _format(value):
     return str(int(value)) if float(value).is_integer() and abs(value) < 1e15 else repr(float(value))
 
 
-def _base_value(key, requested, defaults):
+def _base_value(refine, key, requested, defaults):
     value = requested.get(key, defaults.get(key))
     if not isinstance(value, float):
-        raise PostError(f"--refine {key}: the scene's value '{value}' is not a number")
+        # cfl = auto and the like: there is no number to halve, so the levels must be named.
+        whose = "the scene's" if key in requested else "the default"
+        raise UsageError(f"--refine {refine}: {whose} {key} is '{value}', not a number to refine from; "
+                         f"give the levels with --values V1,V2,... (coarsest first"
+                         f"{', the scale factors of av_linear and av_quadratic' if refine == 'av' else ''})")
     return value
 
 
 def plan_levels(refine, values, count, requested, defaults):
     """The levels of a study, coarsest first."""
     if refine == "av":
-        a1, a2 = (_base_value(k, requested, defaults) for k in ("av_linear", "av_quadratic"))
+        a1, a2 = (_base_value(refine, k, requested, defaults) for k in ("av_linear", "av_quadratic"))
         scales = values or [0.5 ** k for k in range(count)]
         return [Level(k, s, s, [f"av_linear={_format(a1 * s)}", f"av_quadratic={_format(a2 * s)}"])
                 for k, s in enumerate(scales)]
     if values is None:
-        base = _base_value(refine, requested, defaults)
+        base = _base_value(refine, refine, requested, defaults)
         step = {"cell_size": 0.5, "cfl": 0.5, "particles_per_cell": 2.0}.get(refine)
         if step is None:
-            raise PostError(f"--refine {refine}: give its levels with --values (known refinements: "
-                            "cell_size, particles_per_cell, cfl, av)")
+            raise UsageError(f"--refine {refine}: give its levels with --values (known refinements: "
+                             "cell_size, particles_per_cell, cfl, av)")
         values = [base * step ** k for k in range(count)]
     measure = (lambda v: 1.0 / v) if refine == "particles_per_cell" else (lambda v: v)
     return [Level(k, v, measure(v), [f"{refine}={_format(v)}"]) for k, v in enumerate(values)]
@@ -470,6 +480,19 @@ def _values(text):
     return values
 
 
+def _count(minimum, what):
+    """An argparse type: a whole number of at least `minimum`; `what` says why that many."""
+    def count(text):
+        try:
+            value = int(text)
+        except ValueError:
+            raise PostError(f"'{text}' is not a whole number") from None
+        if value < minimum:
+            raise PostError(f"{value}: {what}")
+        return value
+    return count
+
+
 def build_parser():
     checked = argument_type
     parser = argparse.ArgumentParser(prog="mpmshock-converge", description=__doc__.split("\n\n")[0],
@@ -477,7 +500,10 @@ def build_parser():
                                      epilog=__doc__.split("\n\n", 2)[2])
     parser.add_argument("scene", type=Path)
     parser.add_argument("--out", required=True, type=Path, help="directory for the levels and the reports")
-    parser.add_argument("--levels", type=int, default=None, help="number of levels (default 3)")
+    levels = _count(MIN_LEVELS, f"a convergence study needs at least {MIN_LEVELS} levels (2 give the fallback "
+                    "estimate, 3 or more an observed order)")
+    parser.add_argument("--levels", type=checked(levels), default=None,
+                        help=f"number of levels, at least {MIN_LEVELS} (default 3; one level: --values V)")
     parser.add_argument("--refine", default="cell_size", help="cell_size (default), particles_per_cell, cfl, av, "
                         "or any numeric key with --values")
     parser.add_argument("--values", type=checked(_values), help="explicit values of the refined key, coarsest first")
@@ -487,7 +513,8 @@ def build_parser():
     parser.add_argument("--regions", type=lambda t: [r.strip() for r in t.split(",") if r.strip()],
                         help="regions to report (default: all in regions.csv)")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="scene override (repeatable)")
-    parser.add_argument("--seeds", type=int, default=1, help="runs per level with seeds S, S+1, ... (default 1)")
+    parser.add_argument("--seeds", type=checked(_count(1, "a level needs at least 1 run")), default=1,
+                        help="runs per level with seeds S, S+1, ... (default 1)")
     parser.add_argument("--exact", nargs="+", action="extend", type=checked(_exact), default=[],
                         metavar="REGION:QUANTITY=VALUE", help="known answers (SI, or with a unit) to check the estimate")
     return parser
@@ -497,9 +524,7 @@ def check_arguments(args):
     """Conflicts argparse cannot see; raises PostError."""
     if args.values is not None and args.levels is not None and args.levels != len(args.values):
         raise PostError(f"--levels {args.levels} but --values gives {len(args.values)} values")
-    args.levels = len(args.values) if args.values is not None else (args.levels or 3)
-    if args.levels < 1 or args.seeds < 1:
-        raise PostError("--levels and --seeds must be at least 1")
+    args.levels = len(args.values) if args.values is not None else (args.levels if args.levels is not None else 3)
     if args.window and not args.window[0] < args.window[1]:
         raise PostError("--window T0 T1 needs T0 < T1")
     taken = {*refined_keys(args.refine), "output_dir", *(["seed"] if args.seeds > 1 else [])}
@@ -510,16 +535,29 @@ def check_arguments(args):
                             + (" (give the levels with --values)" if key != "output_dir" else ""))
 
 
+def check_out(out):
+    """--out must be, or be creatable as, a directory: refused before anything runs, the path untouched."""
+    existing = next((p for p in (out, *out.parents) if p.exists()), None)
+    if existing is not None and not existing.is_dir():
+        what = "exists and is not a directory" if existing == out else f"lies in {existing}, which is not a directory"
+        raise UsageError(f"--out {out} {what}; give a directory for the levels and the reports")
+
+
 def main(argv=None):
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    args = parser.parse_args(argv)
     try:
+        check_out(args.out)
         check_arguments(args)
         binary = mpmshock_binary()
         if not binary.is_file():
             raise PostError(f"no mpmshock binary at {binary} (build it, or set $MPMSHOCK)")
         defaults = key_defaults(binary)
         levels = plan_levels(args.refine, args.values, args.levels, requested_scene(args.scene, args.set), defaults)
-        args.out.mkdir(parents=True, exist_ok=True)
+        try:
+            args.out.mkdir(parents=True, exist_ok=True)
+        except OSError as e:
+            raise PostError(f"--out {args.out}: cannot make the directory: {e.strerror}") from None
         run_levels(levels, args, binary, defaults)
         results = collect(levels, args.regions, args.window, args.at)
         exact = dict(args.exact)
@@ -530,6 +568,8 @@ def main(argv=None):
         write_csv(args.out / "convergence.csv", results, costs)
         (args.out / "convergence.md").write_text(markdown(args, levels, costs, results, exact))
         plot_cost(args.out / "cost.png", results, costs)
+    except UsageError as e:
+        parser.error(str(e))   # usage and message, exit 2
     except PostError as e:
         print(f"mpmshock-converge: error: {e}", file=sys.stderr)
         return 1

@@ -174,6 +174,11 @@ def test_plan_levels():
     assert [lv.measure for lv in explicit] == [30e-6, 15e-6]
     with pytest.raises(converge.PostError, match="--values"):
         plan_levels("sample_interval", None, 3, {}, {"sample_interval": 1e-8})
+    # cfl = auto (the simulator's default) has no number to halve: the levels must be named.
+    for requested in ({"cfl": "auto"}, {}):
+        with pytest.raises(converge.UsageError, match=r"cfl is 'auto'.*--values"):
+            plan_levels("cfl", None, 3, requested, {"cfl": "auto"})
+    assert [lv.value for lv in plan_levels("cfl", [0.3, 0.15], 2, {"cfl": "auto"}, {"cfl": "auto"})] == [0.3, 0.15]
 
 
 def test_half_rise_time():
@@ -331,3 +336,29 @@ def test_bad_input(study, tmp_path):
     done = converge_cli(study["binary"], study["scene"], "--out", tmp_path, "--window", "5", "10ns")
     assert done.returncode == 2
 
+
+def test_usage_errors_exit_2_before_anything_runs(mpmshock, tmp_path):
+    """Counts below what a study needs, an --out that is not a directory and a refinement of
+    cfl = auto without --values: argparse-style usage errors (exit 2), nothing run or written."""
+    scene = tmp_path / "auto.scene"
+    scene.write_text(SOLID_SCENE + "cfl = auto\n")
+    out = tmp_path / "out"
+
+    def refused(*args, says):
+        done = converge_cli(mpmshock, scene, *args)
+        assert done.returncode == 2, (args, done.returncode, done.stderr)
+        assert says in done.stderr and "Traceback" not in done.stderr, (args, done.stderr)
+        assert not out.exists() and "mpmshock-converge: level" not in done.stderr
+        return done.stderr
+
+    for count in ("0", "-1", "1"):   # --levels 0 used to run 3 levels
+        refused("--out", out, "--levels", count, says="a convergence study needs at least 2 levels")
+    refused("--out", out, "--levels", "two", says="'two' is not a whole number")
+    refused("--out", out, "--seeds", "0", says="--seeds")
+    afile = tmp_path / "notes.txt"
+    afile.write_text("keep me\n")
+    refused("--out", afile, says=f"--out {afile} exists and is not a directory")
+    refused("--out", afile / "study", says=f"lies in {afile}, which is not a directory")
+    assert afile.read_text() == "keep me\n"
+    message = refused("--out", out, "--refine", "cfl", says="--refine cfl: the scene's cfl is 'auto'")
+    assert "give the levels with --values" in message
