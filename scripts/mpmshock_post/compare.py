@@ -5,8 +5,8 @@ import numpy as np
 
 from .errors import PostError
 from .labels import run_labels
-from .style import (COLORS, LINESTYLES, MARKERS, keep_min_span, mark_every, note_missing, panel_figure, short_ticks,
-                    time_axis)
+from .style import (COLORS, LINESTYLES, MARKERS, keep_min_span, mark_every, missing_reason, note_missing, panel_figure,
+                    short_ticks, time_axis)
 from .timeseries import in_time_range, select_regions
 from .units import TIME, quantity
 
@@ -47,10 +47,12 @@ def plot_compare(runs, quantities=("density",), regions=(), labels=None, trange=
         base = name[:-len("_std")] if name.endswith("_std") else name
         q = quantity(base)
         drawn = False
+        shown = []   # (region, rows drawn) of every run
         shifts = offsets.get(name, [0.0] * len(runs))
         for i, (label, by_region) in enumerate(zip(labels, series)):
             for j, region in enumerate(regions):
                 data = in_time_range(by_region[region], trange)
+                shown.append((region, data))
                 values = data[column] * q.factor + shifts[i]
                 if np.all(np.isnan(values)):
                     continue
@@ -60,7 +62,7 @@ def plot_compare(runs, quantities=("density",), regions=(), labels=None, trange=
                         label=label if len(regions) == 1 else f"{label}, {region}")
                 drawn = True
         if not drawn:
-            note_missing(ax, "thermal model off" if base == "temperature" else "no data")
+            note_missing(ax, missing_reason(base, [run.scene for run in runs], shown))
         elif logy:
             ax.set_yscale("log")
         else:

@@ -8,7 +8,7 @@ from .labels import case_label
 from .local import has_quantity, local_quantity
 from .regions import region_points
 from .stats import moments
-from .style import COLORS, note_missing, panel_figure
+from .style import COLORS, note_missing, panel_figure, thermal_off
 from .units import TIME, quantity
 
 QUANTITIES = ("density", "pressure", "temperature", "velocity_x", "velocity_y")
@@ -64,7 +64,7 @@ def plot_histograms(snapshots, region, bins=50, title=None, run_name=None):
         samples = [region_values(snapshot, region, name) for snapshot in snapshots]
         finite = [values for values in samples if values.size]
         if not finite:
-            note_missing(ax, "thermal model off" if name == "temperature" else "no data")
+            note_missing(ax, "thermal model off" if thermal_off(name, [s.scene for s in snapshots]) else "no data")
             ax.set_xlabel(q.label())
             continue
         # Shared bin edges, so that the times compare bin by bin, over the central 99% of the

@@ -13,7 +13,7 @@ from matplotlib.figure import Figure
 
 from .errors import PostError, select_named
 from .labels import case_label, run_labels
-from .style import COLORS, LINESTYLES, MARKERS, mark_every, note_missing, time_axis
+from .style import COLORS, LINESTYLES, MARKERS, mark_every, note_missing, thermal_off, time_axis
 from .timeseries import in_time_range
 from .units import TIME, quantity
 
@@ -65,7 +65,8 @@ def plot_probes(runs, probes=(), quantity_name="velocity_y", trange=None, labels
                     label=name if single else (label if len(names) == 1 else f"{label}, {name}"))
             drawn = True
     if not drawn:
-        note_missing(ax, "thermal model off" if quantity_name == "temperature" else "no data in this time range")
+        note_missing(ax, "thermal model off" if thermal_off(quantity_name, [run.scene for run in runs])
+                     else "no data in this time range")
     if quantity_name == "velocity_y" and _all_surface(runs, names):
         prefix = "free-surface velocity "
     else:

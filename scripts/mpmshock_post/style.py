@@ -79,5 +79,29 @@ def note_missing(ax, text):
     ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center", color="gray")
 
 
+def thermal_off(name, scenes):
+    """True when a panel of `name` is empty because no run computed temperatures (thermal = off in
+    every scene; a scene that is not known, None, does not say so)."""
+    return name in ("temperature", "paper_temperature") and all(
+        scene is not None and scene.get("thermal") == "off" for scene in scenes)
+
+
+def missing_reason(name, scenes, samples):
+    """What an empty panel of `name` says, truthfully. `samples`: (region, columns) pairs of the
+    rows drawn (a regions.csv series cut to the time range). A region whose count is 0 in every
+    row holds no material there: its means are NaN whatever the thermal model, so that is said
+    first."""
+    samples = list(samples)
+    if all(len(columns["time"]) == 0 for _, columns in samples):
+        return "no samples in this time range"
+    empty = list(dict.fromkeys(region for region, columns in samples
+                               if "count" in columns and len(columns["count"]) and not columns["count"].any()))
+    if empty and len(empty) == len({region for region, _ in samples}):
+        return f"no material in region{'s' if len(empty) > 1 else ''} {', '.join(empty)}"
+    if thermal_off(name, scenes):
+        return "thermal model off"
+    return "no data"
+
+
 def save_figure(fig, path, fmt, dpi):
     fig.savefig(path, format=fmt, dpi=dpi)

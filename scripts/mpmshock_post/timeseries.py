@@ -5,7 +5,8 @@ import numpy as np
 
 from .errors import select_named
 from .labels import case_label
-from .style import keep_min_span, mark_every, note_missing, panel_figure, region_styles, short_ticks, time_axis
+from .style import (keep_min_span, mark_every, missing_reason, note_missing, panel_figure, region_styles,
+                    short_ticks, time_axis)
 from .units import TIME, quantity
 
 STATE = ("density", "pressure", "temperature", "velocity_x", "velocity_y")
@@ -34,8 +35,8 @@ def plot_region_series(run, quantities, stat, regions=(), trange=None, logy=Fals
     for ax, name in zip(axes, quantities):
         q = quantity(name)
         drawn = False
-        for region, columns in series.items():
-            columns = in_time_range(columns, trange)
+        shown = {region: in_time_range(columns, trange) for region, columns in series.items()}
+        for region, columns in shown.items():
             values = columns[f"{name}_{stat}"] * q.factor
             if np.all(np.isnan(values)):
                 continue
@@ -43,7 +44,7 @@ def plot_region_series(run, quantities, stat, regions=(), trange=None, logy=Fals
                     markevery=mark_every(len(values)), **styles[region])
             drawn = True
         if not drawn:
-            note_missing(ax, "thermal model off" if name == "temperature" else "no data")
+            note_missing(ax, missing_reason(name, [run.scene], shown.items()))
         if logy and drawn:
             ax.set_yscale("log")
         else:

@@ -15,11 +15,13 @@ import sys
 import h5py
 import numpy as np
 
-from conftest import SCRIPTS
+from conftest import SCRIPTS, simulate
 from mpmshock_post import PostError, reader
+from mpmshock_post.compare import plot_compare
 from mpmshock_post.cli import build_parser
 from mpmshock_post.labels import run_labels
 from mpmshock_post.stats import moments
+from mpmshock_post.timeseries import plot_means
 from mpmshock_post.units import parse_time
 
 PLOT = SCRIPTS / "mpmshock-plot"
@@ -110,6 +112,35 @@ def test_pdf_and_svg(ctx):
     out = ctx.tmp / "field.svg"
     expect_image(["field", ctx.run, "-o", out], out, b"<?xml")
     check(b"<svg" in out.read_bytes()[:2000], f"{out} is not SVG")
+
+
+def panel_notes(fig):
+    """The notes written on the panels that have no curve, panel by panel."""
+    return [text.get_text() for ax in fig.axes for text in ax.texts]
+
+
+def test_empty_panels_say_why(ctx, mpmshock, tiny_scene):
+    """A region that holds no material (count 0, NaN means) is said to be empty, not 'thermal
+    model off'; 'thermal model off' is for runs with thermal = off."""
+    empty = ctx.tmp / "empty_region"
+    simulate(mpmshock, tiny_scene, empty, "region.EMPTY=bottom 5 mm 1 mm", "region.B100=bottom 100 um 100 um")
+    regions = reader.Run(empty).regions()
+    check(not regions["EMPTY"]["count"].any() and np.isnan(regions["EMPTY"]["temperature_mean"]).all(),
+          "the region above the target should hold no points")
+    notes = panel_notes(plot_means(reader.Run(empty), regions=["EMPTY"]))
+    check(notes == ["no material in region EMPTY"] * 5, f"panels of the empty region say {notes}")
+    check(panel_notes(plot_means(reader.Run(empty), regions=["EMPTY", "B100"])) == [], "B100 has curves")
+    notes = panel_notes(plot_compare([reader.Run(empty)] * 2, quantities=("temperature",), regions=["EMPTY"]))
+    check(notes == ["no material in region EMPTY"], f"compare of the empty region says {notes}")
+    out = ctx.tmp / "empty_region.png"
+    expect_image(["timeseries", empty, "--regions", "EMPTY", "-o", out], out, PNG_MAGIC)
+
+    cold = ctx.tmp / "thermal_off"
+    simulate(mpmshock, tiny_scene, cold, "thermal=off")
+    check(panel_notes(plot_means(reader.Run(cold), regions=["B800"])) == ["thermal model off"],
+          "a thermal = off run should say so on its temperature panel only")
+    check(panel_notes(plot_means(reader.Run(ctx.run), trange=(1.0, 2.0))) == ["no samples in this time range"] * 5,
+          "a time range past the run should say so")
 
 
 def test_errors(ctx):
