@@ -28,11 +28,8 @@ Decomposition Decomposition::balanced(const std::vector<std::int64_t>& work, int
   const int strips = static_cast<int>(work.size());
   Decomposition d(strips);
   if (ranks <= 1) return d;
+  check_ranks(strips, ranks, first_end_min);
   first_end_min = std::max(first_end_min, kMinStrips);
-  if (strips < first_end_min + (ranks - 1) * kMinStrips)
-    throw SceneError("the grid has " + std::to_string(strips) + " strips of " + std::to_string(4) +
-                     " cell rows, too few for " + std::to_string(ranks) + " ranks (each needs " +
-                     std::to_string(kMinStrips) + "); use fewer ranks or finer cells");
   const std::vector<std::int64_t> prefix = prefix_sums(work);
   const std::int64_t total = prefix.back();
   const bool capped = points.size() == work.size();
@@ -57,6 +54,23 @@ Decomposition Decomposition::balanced(const std::vector<std::int64_t>& work, int
     d.bounds_[static_cast<std::size_t>(r) + 1] = end;
   }
   return d;
+}
+
+int Decomposition::most_ranks(int strips, int first_end_min) {
+  const int first = std::max(first_end_min, kMinStrips);
+  return strips < first ? 0 : 1 + (strips - first) / kMinStrips;
+}
+
+void Decomposition::check_ranks(int strips, int ranks, int first_end_min) {
+  if (ranks <= 1 || ranks <= most_ranks(strips, first_end_min)) return;
+  const int most = most_ranks(strips, first_end_min);
+  std::string why = "the grid has " + std::to_string(strips) + " strips of 4 cell rows, too few for " +
+                    std::to_string(ranks) + " MPI ranks: each rank needs " + std::to_string(kMinStrips) + " strips";
+  if (first_end_min > kMinStrips)
+    why += ", and with symmetry = on rank 0 needs the " + std::to_string(first_end_min) +
+           " strips up to the symmetry plane and a stencil past it";
+  throw SceneError(why + ", so this grid takes at most " + std::to_string(most) + " ranks; use at most " +
+                   std::to_string(most) + " ranks, or finer cells");
 }
 
 bool Decomposition::crowded(const std::vector<std::int64_t>& points) const {

@@ -9,6 +9,7 @@
 
 #include "mpmshock/decomposition.hpp"
 #include "mpmshock/model.hpp"
+#include "mpmshock/simulation.hpp"
 #include "mpmshock/strip_bins.hpp"
 
 namespace mpmshock {
@@ -89,6 +90,7 @@ void check_fits(const Scene& s, int ranks, int node_ranks) {
                   key == "end_time" ? "; the automatic grid margin grows with end_time: set grid_margin" : "");
     fail(text);
   }
+  check_rank_count<D>(s, build_grid_geometry<D>(s), ranks);
 }
 
 namespace {

@@ -81,7 +81,24 @@ int strip_count(const GridGeometry<D>& g) {
   return (g.ny - 1) / StripBins::kRowsPerStrip + 1;
 }
 
+// The strip rank 0's slab must reach: the symmetry plane folds the rows within a stencil of y = 0
+// onto each other on rank 0, which must own them all, not share them.
+template <int D>
+int first_strip_end_needed(const GridGeometry<D>& whole, bool symmetry_plane, int support) {
+  if (!symmetry_plane) return 0;
+  const int plane_row = static_cast<int>(std::lround(-whole.y_min * whole.inv_h));
+  return (plane_row + support) / StripBins::kRowsPerStrip + 2;
+}
+
 }  // namespace
+
+template <int D>
+void check_rank_count(const Scene& scene, const GridGeometry<D>& grid, int ranks) {
+  const Model model(scene);
+  const int support = std::visit([](auto shape) { return decltype(shape)::support; }, model.shape);
+  Decomposition::check_ranks(strip_count(grid.whole()), ranks,
+                             first_strip_end_needed(grid.whole(), model.symmetry_plane, support));
+}
 
 template <int D>
 Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock,
@@ -136,11 +153,7 @@ void Simulation<D>::remember_unreached() {
 
 template <int D>
 int Simulation<D>::first_strip_end_needed() const {
-  // The symmetry plane folds the rows within a stencil of y = 0 onto each other on rank 0: it must
-  // own them all, not share them.
-  if (!model_.symmetry_plane) return 0;
-  const int plane_row = static_cast<int>(std::lround(-whole_geo_.y_min * whole_geo_.inv_h));
-  return (plane_row + kernels_.support) / StripBins::kRowsPerStrip + 2;
+  return mpmshock::first_strip_end_needed(whole_geo_, model_.symmetry_plane, kernels_.support);
 }
 
 template <int D>
@@ -529,5 +542,7 @@ void Simulation<D>::describe_point(std::ostream& out, StepStatus::Code code, std
 
 template class Simulation<2>;
 template class Simulation<3>;
+template void check_rank_count<2>(const Scene&, const GridGeometry<2>&, int);
+template void check_rank_count<3>(const Scene&, const GridGeometry<3>&, int);
 
 }  // namespace mpmshock

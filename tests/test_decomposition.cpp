@@ -36,7 +36,8 @@ void rank_zero_reaches_the_plane() {
 }
 
 void too_few_strips_refused() {
-  CHECK_THROWS_WITH(Decomposition::balanced(Loads(7, 1), 4), "too few for 4 ranks");
+  CHECK_THROWS_WITH(Decomposition::balanced(Loads(7, 1), 4), "too few for 4 MPI ranks");
+  CHECK_THROWS_WITH(Decomposition::balanced(Loads(7, 1), 4), "at most 3 ranks");
 }
 
 // A young front: 8 strips of computed points (weight 50 each) at the bottom, 72 of points nothing

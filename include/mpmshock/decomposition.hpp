@@ -40,6 +40,10 @@ class Decomposition {
   // grid has too few strips for that many ranks.
   static Decomposition balanced(const std::vector<std::int64_t>& work, int ranks, int first_end_min = 0,
                                 const std::vector<std::int64_t>& points = {});
+  // The most ranks `strips` strips take when rank 0's slab must reach strip `first_end_min`.
+  static int most_ranks(int strips, int first_end_min);
+  // Throws SceneError, saying why and how many ranks fit, where `strips` are too few for `ranks`.
+  static void check_ranks(int strips, int ranks, int first_end_min);
   // Whether some rank holds more points than balanced() allows.
   bool crowded(const std::vector<std::int64_t>& points) const;
 

@@ -55,7 +55,8 @@ template <int D>
 SizeEstimate estimate_size(const Scene& scene);
 
 // Refuses (SceneError naming the key that makes it so) a scene whose points, grid or memory
-// cannot fit: more memory than the machine has, or a grid too large to index. Run before anything
+// cannot fit: more memory than the machine has, a grid too large to index, or too few strips of
+// the grid for `ranks` MPI ranks. Run before anything
 // is allocated, deleted or written. On MPI ranks a rank holds at most twice its even share of the
 // points and grid (decomposition.hpp), and `node_ranks` of them share this machine's memory.
 template <int D>

@@ -185,6 +185,11 @@ class Simulation {
   Clock clock_;
 };
 
+// Refuses (SceneError) a rank count the scene's grid has too few strips for, before anything is
+// built or written: the limits the Simulation's slabs obey (decomposition.hpp).
+template <int D>
+void check_rank_count(const Scene& scene, const GridGeometry<D>& grid, int ranks);
+
 extern template class Simulation<2>;
 extern template class Simulation<3>;
 
