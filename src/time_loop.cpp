@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <sstream>
 
 #include "mpmshock/diagnostics.hpp"
@@ -51,12 +52,13 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   result.dimension = D;
   const std::int64_t start_steps = sim.steps();
   OutputSchedule& sch = run.schedule;
-  auto take_snapshot = [&] {
+  auto take_snapshot = [&](bool fast = false) {
     sim.settle();
     run.clock = sim.clock();
-    out.snapshot(sim, run);
+    out.snapshot(sim, run, fast);
     ++sch.snapshot_index;
   };
+  const StopRequestsHeard heard;  // from here a SIGINT or SIGTERM asks for a stop with a snapshot
 
   const double end_time = landing_end_time(scene);
   const int all_threads = omp_get_max_threads();
@@ -119,16 +121,36 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
     if (!failed_at_sample) out.sample(sim, sch.last_dt);
     take_snapshot();  // the state that went wrong, for inspection
   } else if (stop != 0 && sim.time() < end_time * (1.0 - 1e-12)) {
+    // Under mpirun the ranks may be killed soon after the signal (Open MPI: 1 s, the MCA parameter
+    // odls_base_sigkill_timeout): say at once what is being written and what to restart from if it
+    // is not finished, put that in summary.json, and write the snapshot uncompressed (the fastest).
     const int sig = stop;
     result.exit_code = 128 + sig;
     const std::string name = snapshot_name(sch.snapshot_index);
+    const std::string signal = sig == SIGINT    ? "SIGINT"
+                               : sig != SIGTERM ? "a signal"
+                               : comm.parallel() ? "SIGTERM (mpirun passes a SIGINT on as SIGTERM)"
+                                                 : "SIGTERM";
+    std::ostringstream at;
+    at << "t = " << sim.time() * 1e9 << " ns, step " << sim.steps();
+    std::string fallback = "the run's set-up";
+    for (int k = sch.snapshot_index - 1; k >= 0; --k)
+      if (fs::exists(dir / snapshot_name(k))) {
+        fallback = (dir / snapshot_name(k)).string() + " (with --force: the rows after it go)";
+        break;
+      }
+    result.failure = "a stop was asked for by " + signal + " at " + at.str() + "; writing " + (dir / name).string() +
+                     " to restart from; if that file is not there, the run was killed while writing it: restart from " +
+                     fallback;
+    if (comm.root()) {
+      std::fprintf(stderr, "mpmshock: %s\n", result.failure.c_str());
+      result.wall_seconds = std::chrono::duration<double>(WallClock::now() - wall_start).count();
+      write_summary_json(dir / "summary.json", result);
+    }
     out.sample(sim, sch.last_dt);
-    take_snapshot();  // a state to restart from
-    std::ostringstream why;
-    why << "stopped by " << (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal") << " at t = "
-        << sim.time() * 1e9 << " ns, step " << sim.steps() << "; continue with: mpmshock --restart "
-        << (dir / name).string();
-    result.failure = why.str();
+    take_snapshot(true);  // a state to restart from
+    result.failure = "stopped by " + signal + " at " + at.str() + "; continue with: mpmshock --restart " +
+                     (dir / name).string();
   } else {
     // The end time is an output time whatever the intervals.
     const double tol = 1e-9 * sch.last_dt;
@@ -146,6 +168,24 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
 
 namespace {
 
+// A JSON string: the text with its quotes, backslashes and control characters escaped.
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
 // A JSON number, or null for NaN and infinities (which JSON cannot write).
 std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";
@@ -160,7 +200,7 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
   const fs::path tmp = path.string() + ".tmp";
   File f = open_output(tmp);
   std::fprintf(f.get(),
-               "{\n  \"exit_code\": %d,\n  \"failure\": \"%s\",\n  \"steps\": %lld,\n  \"start_time\": %s,\n"
+               "{\n  \"exit_code\": %d,\n  \"failure\": %s,\n  \"steps\": %lld,\n  \"start_time\": %s,\n"
                "  \"end_time\": %s,\n  \"wall_seconds\": %s,\n  \"material_points\": %zu,\n"
                "  \"point_steps_per_second\": %s,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n"
                "  \"mass_error\": %s,\n  \"momentum_error\": %s,\n  \"energy_error\": %s,\n"
@@ -168,7 +208,7 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
                "  \"imbalance\": %s,\n  \"mpi_bytes_per_step\": %s,\n  \"mpi_messages_per_step\": %s,\n"
                "  \"mpi_seconds\": %s,\n  \"mpi_seconds_least\": %s,\n  \"beyond_eos_fit\": %zu,\n"
                "  \"eos_fit_J\": %s\n}\n",
-               r.exit_code, r.exit_code == 0 ? "" : "see stderr", static_cast<long long>(r.steps),
+               r.exit_code, json_string(r.failure).c_str(), static_cast<long long>(r.steps),
                json_number(r.start_time).c_str(), json_number(r.end_time).c_str(), json_number(r.wall_seconds).c_str(),
                r.points, json_number(r.point_steps_per_second).c_str(), r.threads,
                static_cast<long long>(r.steps_with_fewer_threads), json_number(r.mass_error).c_str(),
