@@ -13,28 +13,35 @@ std::string conservation_header(int dimension) {
 }
 
 template <int D>
-Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, bool append, MirrorImage<D> mirror)
+Outputs<D>::Outputs(const Scene& scene, const fs::path& dir, ContinuedFiles continued, MirrorImage<D> mirror)
     : scene_(scene), dir_(dir), mirror_(std::move(mirror)),
-      regions_(writes_ ? open_output(dir / "regions.csv", append ? "a" : "w") : File{}),
-      conservation_(writes_ ? open_output(dir / "conservation.csv", append ? "a" : "w") : File{}), xdmf_(xdmf_path()) {
+      regions_(writes_ ? open_output(dir / "regions.csv", continued.regions ? "a" : "w") : File{}),
+      conservation_(writes_ ? open_output(dir / "conservation.csv", continued.conservation ? "a" : "w") : File{}),
+      continued_(continued), xdmf_(xdmf_path()) {
   // A band that reaches within a cell of the plane counts flyer points (their extents reach across).
   for (const RegionSpec& r : scene.regions)
     regions_need_whole_ |= mirror_.on() && r.kind == RegionSpec::Kind::band && r.a < scene.cell_size;
-  if (writes_ && !append) {
-    std::fprintf(regions_.get(), "%s\n", regions_header(scene.paper_temperature).c_str());
-    std::fprintf(conservation_.get(), "%s\n", conservation_header(D).c_str());
-  }
+  if (writes_ && !continued.regions) std::fprintf(regions_.get(), "%s\n", regions_header(scene.paper_temperature).c_str());
+  if (writes_ && !continued.conservation) std::fprintf(conservation_.get(), "%s\n", conservation_header(D).c_str());
 }
 
 template <int D>
-void Outputs<D>::follow(Probes<D> probes, double start_time, bool append) {
+void Outputs<D>::follow(Probes<D> probes, double start_time) {
   probes_ = std::move(probes);
   if (probes_.empty()) return;
+  const bool append = continued_.probes;
   if (writes_) {
     probes_file_ = open_output(dir_ / "probes.csv", append ? "a" : "w");
-    if (!append) std::fprintf(probes_file_.get(), "%s\n", probes_header(scene_.paper_temperature).c_str());
+    if (!append) std::fprintf(probes_file_.get(), "%s\n", probes_header(scene_.paper_temperature, D).c_str());
   }
   next_probe_ = append ? probes_.next_after(start_time) : start_time;
+}
+
+template <int D>
+void Outputs<D>::start_rows(Simulation<D>& sim, double dt) {
+  if (!probes_.empty() && !continued_.probes) write_probe_rows(sim);
+  if (!continued_.regions || !continued_.conservation)
+    write_samples(sim, dt, !continued_.regions, !continued_.conservation);
 }
 
 template <int D>
@@ -46,6 +53,11 @@ void Outputs<D>::write_probe_rows(const Simulation<D>& sim) {
 
 template <int D>
 void Outputs<D>::sample(Simulation<D>& sim, double dt) {
+  write_samples(sim, dt, true, true);
+}
+
+template <int D>
+void Outputs<D>::write_samples(Simulation<D>& sim, double dt, bool regions, bool conservation) {
   sim.settle();
   const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   // Regions of the target alone see the same points either way; a band may reach into the flyer.
@@ -56,22 +68,24 @@ void Outputs<D>::sample(Simulation<D>& sim, double dt) {
       sample_regions(points, scene_.regions, thermal, sim.whole_grid().cross_section(), comm_);
   const Totals t = totals(sim);
   if (!writes_) return;
-  write_region_rows(regions_.get(), sim.time(), stats);
-  std::fprintf(conservation_.get(), "%.10g,%lld,%.6g,%.12g,", sim.time(), static_cast<long long>(sim.steps()), dt,
-               t.mass);
-  for (int d = 0; d < D; ++d) std::fprintf(conservation_.get(), "%.12g,", t.momentum[d]);
-  std::fprintf(conservation_.get(), "%.12g,%.12g,%.12g,%.12g\n", t.kinetic, t.internal, t.total_energy(),
-               mirror_.whole_sum(sim.clock().work_mismatch));
+  if (regions) write_region_rows(regions_.get(), sim.time(), stats);
+  if (conservation) {
+    std::fprintf(conservation_.get(), "%.10g,%lld,%.6g,%.12g,", sim.time(), static_cast<long long>(sim.steps()), dt,
+                 t.mass);
+    for (int d = 0; d < D; ++d) std::fprintf(conservation_.get(), "%.12g,", t.momentum[d]);
+    std::fprintf(conservation_.get(), "%.12g,%.12g,%.12g,%.12g\n", t.kinetic, t.internal, t.total_energy(),
+                 mirror_.whole_sum(sim.clock().work_mismatch));
+  }
   if (probes_file_) flush_or_throw(probes_file_.get(), "probes.csv");
   flush_or_throw(regions_.get(), "regions.csv");
   flush_or_throw(conservation_.get(), "conservation.csv");
 }
 
 template <int D>
-void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run) {
+void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run, bool fast) {
   const std::string name = snapshot_name(run.schedule.snapshot_index);
   SnapshotOptions<D> options;
-  options.compression = static_cast<int>(scene_.snapshot_compression);
+  options.compression = fast ? 0 : static_cast<int>(scene_.snapshot_compression);
   options.melt = melt_curve_of(scene_);
   std::optional<Grid<D>> gathered;  // every rank's active rows in the whole grid
   if (scene_.snapshot_grid) {

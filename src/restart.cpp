@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <optional>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -73,7 +74,15 @@ std::vector<std::string> state_lines(const std::string& resolved) {
 // another run's snapshot copied in would mix two runs in one directory.
 void check_same_run(const std::string& snapshot, const Scene& snapshot_scene, const fs::path& dir) {
   const fs::path scene_file = dir / "scene.txt";
-  if (!fs::exists(scene_file)) return;
+  if (!fs::exists(scene_file)) {
+    // Outputs that cannot be told from another run's are not continued.
+    for (const char* csv : {"regions.csv", "conservation.csv", "probes.csv"})
+      if (fs::exists(dir / csv))
+        throw SceneError("snapshot " + snapshot + ": " + (dir / csv).string() + " is there but " + scene_file.string() +
+                         " is not, so whether it belongs to the snapshot's run cannot be checked; restart into a " +
+                         "new directory with --set output_dir=... (or put the run's scene.txt back)");
+    return;
+  }
   std::vector<std::string> there;
   try {
     there = state_lines(resolved_scene(load_scene(scene_file.string())));
@@ -187,6 +196,73 @@ std::pair<std::size_t, std::size_t> share_of_snapshot(const RunState& run, std::
   return {from + rank * simulated / ranks, from + (rank + 1) * simulated / ranks};
 }
 
+// A restart may name new regions and probes, not give an existing name another meaning: one
+// column of regions.csv or probes.csv would then hold two things under one name.
+void check_same_names(const std::string& snapshot, const Scene& own, const Scene& scene) {
+  std::map<std::string, std::string> before;
+  std::istringstream in(resolved_scene(own));
+  for (std::string line; std::getline(in, line);) {
+    const std::string key = override_key(line);
+    if (key.rfind("region.", 0) == 0 || key.rfind("probe.", 0) == 0) before[key] = line;
+  }
+  std::istringstream now(resolved_scene(scene));
+  for (std::string line; std::getline(now, line);) {
+    const std::string key = override_key(line);
+    const auto it = before.find(key);
+    if (it == before.end() || it->second == line) continue;
+    throw SceneError(scene.where(key) + ": key '" + key + "': the run of " + snapshot + " already has '" +
+                     it->second + "', whose series its " + (key[0] == 'r' ? "regions.csv" : "probes.csv") +
+                     " holds; a restart may add a " + (key[0] == 'r' ? "region" : "probe") +
+                     " under a new name but not redefine one");
+  }
+}
+
+// Prepares the snapshot's own directory (locked) for the run to go on there: the run there must be the
+// snapshot's, the outputs after the snapshot are dropped (with --force), and the CSVs that are
+// there are continued. Returns which; `earlier` gets the snapshots the XDMF index keeps listing.
+template <int D>
+ContinuedFiles continue_in_place(const std::string& snapshot, const Scene& own, const Scene& scene,
+                                 const fs::path& dir, int index, double t0, const GridGeometry<D>& grid, bool force,
+                                 std::vector<XdmfSnapshot>& earlier) {
+  check_same_run(snapshot, own, dir);
+  const char* csvs[3] = {"regions.csv", "conservation.csv", "probes.csv"};
+  check_csv_header(dir / csvs[0], regions_header(scene.paper_temperature), snapshot);
+  check_csv_header(dir / csvs[1], conservation_header(D), snapshot);
+  check_csv_header(dir / csvs[2], probes_header(scene.paper_temperature, D), snapshot);
+  // Later snapshots and rows belong to the continuation this restart replaces.
+  std::vector<fs::path> later;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (snapshot_number(e.path()) > index) later.push_back(e.path());
+  if (!force) {
+    std::size_t later_rows = 0;
+    for (const char* csv : csvs) later_rows += count_rows_after(dir / csv, t0);
+    if (!later.empty() || later_rows > 0)
+      throw SceneError(snapshot + ": restarting here discards " + std::to_string(later.size()) +
+                       " later snapshot(s) and " + std::to_string(later_rows) +
+                       " later row(s) of regions.csv, conservation.csv and probes.csv; pass --force to replace them");
+  }
+  // What a killed run left half-written goes too (the complete files it replaced are there).
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0 && is_run_output(e.path()))
+      later.push_back(e.path());
+  }
+  for (const fs::path& p : later) fs::remove(p);
+  for (const char* csv : csvs) truncate_rows_after(dir / csv, t0);
+  for (int k = 0; k <= index; ++k) {
+    const fs::path p = dir / snapshot_name(k);
+    if (!fs::exists(p)) continue;
+    try {
+      const SnapshotHeader h = read_snapshot_header(p.string());
+      earlier.push_back(
+          {p.filename().string(), h.time, h.points, h.grid, grid.nx, grid.ny, grid.y_min, grid.h, D, grid.nz});
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mpmshock: warning: %s is left out of %s: %s\n", p.string().c_str(), kXdmfName, e.what());
+    }
+  }
+  return {fs::exists(dir / csvs[0]), fs::exists(dir / csvs[1]), fs::exists(dir / csvs[2])};
+}
+
 template <int D>
 RunResult restart_from(const std::string& snapshot, const std::vector<std::string>& overrides,
                        const RunOptions& options) {
@@ -199,72 +275,30 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
       return share_of_snapshot(run, n, snapshot, comm);
     });
   });
-  const Scene scene =
-      parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, overrides));
+  const Scene own = parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, {}));
+  Scene scene = parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, overrides));
+  check_same_names(snapshot, own, scene);
   on_every_rank(comm, [&] { check_fits<D>(scene, comm.size(), comm.node_ranks()); });
   const double t0 = r.run.clock.time;
   if (!(scene.end_time > t0))
     throw SceneError(scene.where("end_time") + ": key 'end_time': the snapshot is at t = " + std::to_string(t0 * 1e9) +
                      " ns; set a later end_time to go on (--set end_time=...)");
 
-  // Outputs go on where the snapshot lies, unless the restart names a new output_dir.
+  // Outputs go on where the snapshot lies, unless the restart names a new output_dir; scene.txt
+  // says where they are.
   const bool new_dir = std::any_of(overrides.begin(), overrides.end(),
                                    [](const std::string& o) { return override_key(o) == "output_dir"; });
   const fs::path dir = new_dir ? fs::path(scene.output_dir) : fs::absolute(snapshot).parent_path();
+  std::error_code ec;  // the scene's own output_dir where that is the snapshot's directory, else this one
+  if (!new_dir && !fs::equivalent(own.output_dir, dir, ec)) scene.output_dir = dir.string();
   const int index = r.run.schedule.snapshot_index;
   const GridGeometry<D> grid = build_grid_geometry<D>(scene);
   on_every_rank(comm, [&] { validate_restart(r, scene, grid, snapshot); });  // each rank its share
-  std::vector<XdmfSnapshot> earlier;
-  bool append = false;
-  DirectoryLock lock;
-  on_root(comm, [&] {  // the directory is rank 0's
-  if (new_dir) {
-    lock = prepare_output_dir(scene, options.force);
-  } else {
-    lock = DirectoryLock(dir, snapshot + ": ");
-    check_same_run(snapshot, parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, {})),
-                   dir);
-    check_csv_header(dir / "regions.csv", regions_header(scene.paper_temperature), snapshot);
-    check_csv_header(dir / "conservation.csv", conservation_header(D), snapshot);
-    check_csv_header(dir / "probes.csv", probes_header(scene.paper_temperature), snapshot);
-    // Later snapshots and rows belong to the continuation this restart replaces.
-    std::vector<fs::path> later;
-    for (const auto& e : fs::directory_iterator(dir))
-      if (snapshot_number(e.path()) > index) later.push_back(e.path());
-    if (!options.force) {
-      const std::size_t later_rows =
-          count_rows_after(dir / "regions.csv", t0) + count_rows_after(dir / "conservation.csv", t0) +
-          count_rows_after(dir / "probes.csv", t0);
-      if (!later.empty() || later_rows > 0)
-        throw SceneError(snapshot + ": restarting here discards " + std::to_string(later.size()) +
-                         " later snapshot(s) and " + std::to_string(later_rows) +
-                         " later row(s) of regions.csv, conservation.csv and probes.csv; pass --force to replace them");
-    }
-    for (const fs::path& p : later) fs::remove(p);
-    truncate_rows_after(dir / "regions.csv", t0);
-    truncate_rows_after(dir / "conservation.csv", t0);
-    truncate_rows_after(dir / "probes.csv", t0);
-    append = fs::exists(dir / "regions.csv") && fs::exists(dir / "conservation.csv");
-    for (int k = 0; k <= index; ++k) {
-      const fs::path p = dir / snapshot_name(k);
-      if (!fs::exists(p)) continue;
-      try {
-        const SnapshotHeader h = read_snapshot_header(p.string());
-        earlier.push_back(
-            {p.filename().string(), h.time, h.points, h.grid, grid.nx, grid.ny, grid.y_min, grid.h, D, grid.nz});
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "mpmshock: warning: %s is left out of %s: %s\n", p.string().c_str(), kXdmfName, e.what());
-      }
-    }
-  }
-  write_text(dir / "scene.txt", resolved_scene(scene));
-  if (!fs::exists(dir / "voids.csv")) write_voids(dir / "voids.csv", r.run.flyer, r.run.target, D);
-  });
-  r.run.scene_text = resolved_scene(scene);
 
   // Probes and the mirror image come from the initial state, as the run made them (and only they
   // are kept of it; each rank makes a share of its rows). A snapshot holds the whole impact; with
-  // symmetry = on the target's points go on.
+  // symmetry = on the target's points go on. All of it before the directory is touched: a restart
+  // refused writes nothing.
   MirrorImage<D> mirror;
   Probes<D> probes;
   if (!scene.probes.empty() || scene.symmetry == Symmetry::on) {
@@ -280,19 +314,36 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
     throw SceneError("snapshot " + snapshot + ": " + e.what());
   }
   Simulation<D>& sim = *simulation;
-  // Whether the CSVs go on is rank 0's finding; every rank's output schedule follows it (probes.csv's
-  // next row time).
-  std::string appends = comm.root() ? std::string{append ? '1' : '0', fs::exists(dir / "probes.csv") ? '1' : '0'} : "";
-  comm.broadcast(appends);
-  append = appends[0] == '1';
-  const bool probes_go_on = append && appends[1] == '1';
-  Outputs<D> out(scene, dir, append, std::move(mirror));
-  if (!probes.empty()) out.follow(std::move(probes), sim.time(), probes_go_on);
+  if (comm.root()) print_scene_warnings(scene, sim.stable_time_step());
+
+  std::vector<XdmfSnapshot> earlier;
+  ContinuedFiles continued;
+  DirectoryLock lock;
+  on_root(comm, [&] {  // the directory is rank 0's
+    if (new_dir) {
+      lock = prepare_output_dir(scene, options.force);
+    } else {
+      lock = DirectoryLock(dir, snapshot + ": ");
+      continued = continue_in_place(snapshot, own, scene, dir, index, t0, grid, options.force, earlier);
+    }
+    write_text(dir / "scene.txt", resolved_scene(scene));
+    if (!fs::exists(dir / "voids.csv")) write_voids(dir / "voids.csv", r.run.flyer, r.run.target, D);
+  });
+  r.run.scene_text = resolved_scene(scene);
+  // Which CSVs go on is rank 0's finding; every rank's output schedule follows it (probes.csv's
+  // next row time, the first rows' sums).
+  std::string flags = comm.root() ? std::string{continued.regions ? '1' : '0', continued.conservation ? '1' : '0',
+                                                continued.probes ? '1' : '0'}
+                                  : "";
+  comm.broadcast(flags);
+  continued = {flags[0] == '1', flags[1] == '1', flags[2] == '1'};
+  Outputs<D> out(scene, dir, continued, std::move(mirror));
+  if (!probes.empty()) out.follow(std::move(probes), sim.time());
   out.keep_listing(std::move(earlier));
   // Resume the output schedule from the snapshot's time, by the rule the loop itself uses.
   resume_schedule(r.run.schedule, scene, t0, 1e-9 * r.run.schedule.last_dt);
   r.run.schedule.snapshot_index = index + 1;
-  if (new_dir) out.sample(sim, r.run.schedule.last_dt);  // the new directory starts at the restart time
+  out.start_rows(sim, r.run.schedule.last_dt);  // a file that starts here starts at the restart time
   return advance(scene, sim, r.run, out, dir, options);
 }
 
@@ -310,6 +361,7 @@ int snapshot_dimension(const std::string& snapshot) {
 
 RunResult restart_run(const std::string& snapshot, const std::vector<std::string>& overrides,
                       const RunOptions& options) {
+  check_input_file(snapshot, "snapshot");
   check_restart_overrides(snapshot, overrides);
   return snapshot_dimension(snapshot) == 3 ? restart_from<3>(snapshot, overrides, options)
                                            : restart_from<2>(snapshot, overrides, options);
@@ -322,7 +374,8 @@ std::string check_restart_in(const std::string& snapshot, const std::vector<std:
   Restart<D> r = read_snapshot<D>(snapshot);
   const Scene scene =
       parse_scene(r.run.scene_text, snapshot + " (scene)", with_old_defaults(r.run.scene_text, overrides));
-  check_fits<D>(scene, 1, 1);  // as one process
+  const Comm& comm = Comm::world();  // refuse on mpirun what the restart on as many ranks refuses
+  check_fits<D>(scene, comm.size(), comm.node_ranks());
   validate_restart(r, scene, build_grid_geometry<D>(scene), snapshot);
   std::ostringstream out;
   out << "snapshot " << snapshot << ": t = " << r.run.clock.time * 1e9 << " ns, step " << r.run.clock.steps << ", "
@@ -333,6 +386,7 @@ std::string check_restart_in(const std::string& snapshot, const std::vector<std:
 }  // namespace
 
 std::string check_restart(const std::string& snapshot, const std::vector<std::string>& overrides) {
+  check_input_file(snapshot, "snapshot");
   check_restart_overrides(snapshot, overrides);
   return snapshot_dimension(snapshot) == 3 ? check_restart_in<3>(snapshot, overrides)
                                            : check_restart_in<2>(snapshot, overrides);

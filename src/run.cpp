@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "mpmshock/diagnostics.hpp"
+#include "mpmshock/probes.hpp"
 #include "mpmshock/setup.hpp"
 #include "mpmshock/time_loop.hpp"
 
@@ -19,8 +20,6 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
   on_every_rank(comm, [&] { check_fits<D>(scene, comm.size(), comm.node_ranks()); });  // each its machine
   // Each rank makes the points of its share of the rows only (on one rank: all of them).
   InitialState<D> initial = InitialBuilder<D>(scene).build_share(comm.rank(), comm.size());  // SceneError on voids that cannot fit
-  if (comm.root())
-    for (const std::string& w : scene_warnings(scene)) std::fprintf(stderr, "mpmshock: warning: %s\n", w.c_str());
   RunState run;
   run.scene_text = resolved_scene(scene);
   run.target = initial.target;
@@ -28,6 +27,7 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
   run.initial = initial.mirror.whole(compute_totals(initial.particles, comm));  // summed as every later total is
   Probes<D> probes = probes_of(scene, initial, comm);
   Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
+  if (comm.root()) print_scene_warnings(scene, sim.stable_time_step());
 
   const fs::path dir(scene.output_dir);
   DirectoryLock lock;  // rank 0 writes the directory
@@ -36,10 +36,9 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
     write_text(dir / "scene.txt", run.scene_text);
     write_voids(dir / "voids.csv", run.flyer, run.target, D);
   });
-  Outputs<D> out(scene, dir, false, std::move(initial.mirror));
-  out.follow(std::move(probes), sim.time(), false);
-  out.probe(sim);
-  out.sample(sim, 0.0);
+  Outputs<D> out(scene, dir, {}, std::move(initial.mirror));
+  out.follow(std::move(probes), sim.time());
+  out.start_rows(sim, 0.0);
   run.clock = sim.clock();
   out.snapshot(sim, run);
   run.schedule.snapshot_index = 1;
@@ -47,6 +46,12 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
 }
 
 }  // namespace
+
+void print_scene_warnings(const Scene& scene, double first_step) {
+  std::vector<std::string> warnings = scene_warnings(scene);
+  if (const std::string probes = probes_size_warning(scene, first_step); !probes.empty()) warnings.push_back(probes);
+  for (const std::string& w : warnings) std::fprintf(stderr, "mpmshock: warning: %s\n", w.c_str());
+}
 
 RunResult run_scene(const Scene& scene, const RunOptions& options) {
   return scene.dimension == 3 ? run_new<3>(scene, options) : run_new<2>(scene, options);

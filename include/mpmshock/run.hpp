@@ -76,4 +76,8 @@ std::string check_report(const Scene& scene);
 // The summary block printed at the end of a run.
 std::string describe_result(const RunResult& r);
 
+// Every warning about the scene (scene_warnings, and the size of probes.csv at the first time step
+// `first_step`), one per line on stderr; rank 0 alone calls it.
+void print_scene_warnings(const Scene& scene, double first_step);
+
 }  // namespace mpmshock
