@@ -2,6 +2,7 @@
 // shell around the library: read the command line, load the scene, run or check it.
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -142,9 +143,16 @@ namespace {
 // with its code; one that a rank may meet alone (memory, the disk) stops every rank at once.
 [[noreturn]] void fail(const char* message, int code, bool every_rank_alike) {
   const mpmshock::Comm& comm = mpmshock::Comm::world();
-  if (speaks() || (comm.parallel() && !every_rank_alike))
-    std::fprintf(stderr, "mpmshock: error: %s%s\n", message,
-                 comm.parallel() && !every_rank_alike ? (" (rank " + std::to_string(comm.rank()) + ")").c_str() : "");
+  if (speaks() || (comm.parallel() && !every_rank_alike)) {
+    // One line per error (a scene with several errors reports them all).
+    const std::string rank = comm.parallel() && !every_rank_alike ? " (rank " + std::to_string(comm.rank()) + ")" : "";
+    std::string all = message;
+    for (std::size_t start = 0; start <= all.size();) {
+      const std::size_t end = std::min(all.find('\n', start), all.size());
+      std::fprintf(stderr, "mpmshock: error: %s%s\n", all.substr(start, end - start).c_str(), rank.c_str());
+      start = end + 1;
+    }
+  }
   if (comm.parallel() && !every_rank_alike) comm.abort(code);
   finish(code);
 }

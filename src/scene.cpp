@@ -1,8 +1,13 @@
 #include "mpmshock/scene.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -37,6 +42,45 @@ struct Origin {
 SceneError error_at(const Origin& at, const std::string& key, const std::string& message) {
   return SceneError(at.where + ": key '" + key + "': " + message);
 }
+
+// Every error of a scene, reported at once in the order of its lines (the file's, then --set's), as
+// a compiler reports them: one line each, each naming the file, line and key.
+class SceneErrors {
+ public:
+  void add(const Origin& at, const std::string& message) { errors_.emplace_back(order_of(at.where), message); }
+  // Runs f, keeping the SceneError it throws instead of passing it on.
+  template <class F>
+  void collect(const Origin& at, F&& f) {
+    try {
+      f();
+    } catch (const SceneError& e) {
+      add(at, e.what());
+    }
+  }
+  bool empty() const { return errors_.empty(); }
+  void throw_if_any() const {
+    if (errors_.empty()) return;
+    std::vector<std::pair<long, std::string>> sorted = errors_;
+    std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    constexpr std::size_t kMost = 20;
+    std::string text;
+    for (std::size_t k = 0; k < std::min(sorted.size(), kMost); ++k) text += (k ? "\n" : "") + sorted[k].second;
+    if (sorted.size() > kMost) text += "\n... and " + std::to_string(sorted.size() - kMost) + " more errors";
+    throw SceneError(text);
+  }
+
+ private:
+  // "NAME:LINE" by its line, then "--set #I" by I, then the rest ("defaults").
+  static long order_of(const std::string& where) {
+    if (where.rfind("--set #", 0) == 0) return 1000000000L + std::atol(where.c_str() + 7);
+    const auto colon = where.rfind(':');
+    if (colon != std::string::npos && colon + 1 < where.size() &&
+        where.find_first_not_of("0123456789", colon + 1) == std::string::npos)
+      return std::atol(where.c_str() + colon + 1);
+    return 2000000000L;
+  }
+  std::vector<std::pair<long, std::string>> errors_;
+};
 
 std::string format_number(double v) {
   char buf[64];
@@ -486,6 +530,9 @@ bool valid_utf8(const std::string& s) {
   return true;
 }
 
+constexpr const char* kKeyNameRule =
+    " (a key name is ASCII letters, digits, '_', '.' and '-', as in region.T800 or probe.rear_1)";
+
 bool valid_key_name(const std::string& key) {
   if (key.empty() || key.size() > kMaxKeyLength) return false;
   return std::all_of(key.begin(), key.end(), [](char c) {
@@ -516,7 +563,7 @@ struct SpecWords {
   std::vector<std::string> args;
 };
 SpecWords spec_words(const std::string& value) {
-  std::istringstream words(value);
+  std::istringstream words(plain_spacing(value));
   SpecWords out;
   words >> out.kind;
   for (std::string t; words >> t;) {
@@ -601,27 +648,34 @@ std::vector<std::string> split_lines(const std::string& text) {
   return lines;
 }
 
-std::vector<Entry> read_entries(const std::string& text, const std::string& name) {
+std::vector<Entry> read_entries(const std::string& text, const std::string& name, SceneErrors& errors) {
   std::vector<Entry> out;
   int number = 0;
   for (std::string line : split_lines(text)) {
     ++number;
     const Origin at{name + ":" + std::to_string(number)};
-    if (line.size() > kMaxLineBytes)
-      throw SceneError(at.where + ": the line is " + std::to_string(line.size()) + " bytes long; a scene line has at most " +
-                       std::to_string(kMaxLineBytes));
-    if (!valid_utf8(line)) throw SceneError(at.where + ": the line has bytes that are not UTF-8 text");
+    if (line.size() > kMaxLineBytes) {
+      errors.add(at, at.where + ": the line is " + std::to_string(line.size()) + " bytes long; a scene line has at most " +
+                         std::to_string(kMaxLineBytes));
+      continue;
+    }
+    if (!valid_utf8(line)) {
+      errors.add(at, at.where + ": the line has bytes that are not UTF-8 text");
+      continue;
+    }
     if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
     line = trim(line);
     if (line.empty()) continue;
     const auto eq = line.find('=');
-    if (eq == std::string::npos)
-      throw SceneError(at.where + ": expected 'key = value', got " + excerpt(line));
+    if (eq == std::string::npos) {
+      errors.add(at, at.where + ": expected 'key = value', got " + excerpt(line));
+      continue;
+    }
     Entry e{trim(line.substr(0, eq)), trim(line.substr(eq + 1)), at};
-    if (e.key.empty()) throw SceneError(at.where + ": a key is missing before '='");
-    if (!valid_key_name(e.key)) throw SceneError(at.where + ": " + excerpt(e.key) + " is not a key name");
-    if (e.value.empty()) throw error_at(at, e.key, "missing value");
-    out.push_back(std::move(e));
+    if (e.key.empty()) errors.add(at, at.where + ": a key is missing before '='");
+    else if (!valid_key_name(e.key)) errors.add(at, at.where + ": " + excerpt(e.key) + " is not a key name" + kKeyNameRule);
+    else if (e.value.empty()) errors.add(at, error_at(at, e.key, "missing value").what());
+    else out.push_back(std::move(e));
   }
   return out;
 }
@@ -661,7 +715,7 @@ Entry parse_override(const std::string& arg, int index) {
   const auto eq = arg.find('=');
   if (eq == std::string::npos) throw SceneError(at.where + ": expected --set key=value");
   Entry e{override_key(arg), trim(arg.substr(eq + 1)), at};
-  if (!valid_key_name(e.key)) throw SceneError(at.where + ": " + excerpt(e.key) + " is not a key name");
+  if (!valid_key_name(e.key)) throw SceneError(at.where + ": " + excerpt(e.key) + " is not a key name" + kKeyNameRule);
   if (e.value.empty()) throw error_at(at, e.key, "missing value");
   if (!valid_utf8(e.value)) throw error_at(at, e.key, "the value has bytes that are not UTF-8 text");
   return e;
@@ -673,8 +727,8 @@ bool is_multiple(double length, double unit) {
 }
 
 // Checks that involve more than one key. `at` finds where a key was set (or "defaults").
-void check_consistency(const Scene& s, const std::function<Origin(const std::string&)>& at) {
-  auto fail = [&](const std::string& key, const std::string& msg) { throw error_at(at(key), key, msg); };
+void check_consistency(const Scene& s, const std::function<Origin(const std::string&)>& at, SceneErrors& errors) {
+  auto fail = [&](const std::string& key, const std::string& msg) { errors.add(at(key), error_at(at(key), key, msg).what()); };
   const double a = s.particle_spacing();
   if (!is_multiple(s.width, s.cell_size))
     fail("width", "must be a whole number of cells (cell_size = " + format_number(s.cell_size) + " m)");
@@ -683,6 +737,9 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                   "would put one node in a stencil twice");
   if (s.dimension == 3 && !is_multiple(s.derived_depth(), s.cell_size))
     fail("depth", "must be a whole number of cells (cell_size = " + format_number(s.cell_size) + " m)");
+  if (s.dimension == 3 && s.derived_depth() < 3.0 * s.cell_size * (1.0 - 1e-9))
+    fail("depth", "must be at least 3 cells (the widest shape-function stencil), as width must; a thinner "
+                  "periodic column would put one node in a stencil twice");
   if (!is_multiple(s.target_height, a))
     fail("target_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
                               format_number(a) + " m)");
@@ -735,8 +792,21 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     if (const std::string why = asymmetry_of(s); !why.empty())
       fail("symmetry", "on needs a flyer that is the target's mirror image about y = 0, but " + why);
   }
-  for (const ProbeSpec& p : s.probes)
+  for (const ProbeSpec& p : s.probes) {
     if (p.z >= 0.0 && s.dimension != 3) fail("probe." + p.name, "a Z coordinate needs dimension = 3");
+    if (p.kind != ProbeSpec::Kind::point) continue;
+    // Bare numbers are metres: 'point 1 2' asks for a point a metre away.
+    if (!(p.x >= 0.0 && p.x <= s.width))
+      fail("probe." + p.name, "X = " + format_number(p.x) + " m lies outside the column (0 .. width = " +
+                                  format_number(s.width) + " m; bare numbers are metres)");
+    if (!(p.y >= -s.flyer_height - s.cell_size && p.y <= s.target_height + s.cell_size))
+      fail("probe." + p.name, "Y = " + format_number(p.y) + " m lies outside the bodies (-flyer_height = " +
+                                  format_number(-s.flyer_height) + " m .. target_height = " +
+                                  format_number(s.target_height) + " m; bare numbers are metres)");
+    if (s.dimension == 3 && p.z > s.derived_depth())
+      fail("probe." + p.name, "Z = " + format_number(p.z) + " m lies outside the column (0 .. depth = " +
+                                  format_number(s.derived_depth()) + " m; bare numbers are metres)");
+  }
   if (s.grid_margin >= 0.0 && s.grid_margin < 2.0 * s.cell_size)
     fail("grid_margin", "must be at least two cells (or 'auto')");
   // Sizes that would not fit in memory are refused here, before anything is allocated.
@@ -787,22 +857,30 @@ std::vector<RegionSpec> paper_regions() {
 }
 
 Scene parse_scene(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
-  std::vector<Entry> entries = read_entries(text, name);
+  SceneErrors errors;
+  std::vector<Entry> entries = read_entries(text, name, errors);
 
   // One place per key: repeated keys in the file are errors, --set replaces the file's value.
   std::map<std::string, Entry> by_key;
   for (Entry& e : entries) {
-    if (auto it = by_key.find(e.key); it != by_key.end())
-      throw error_at(e.at, e.key, "repeated key (first set at " + it->second.at.where + ")");
+    if (auto it = by_key.find(e.key); it != by_key.end()) {
+      errors.add(e.at, error_at(e.at, e.key, "repeated key (first set at " + it->second.at.where + ")").what());
+      continue;
+    }
     by_key.emplace(e.key, std::move(e));
   }
   std::map<std::string, std::string> overridden;
   for (std::size_t i = 0; i < overrides.size(); ++i) {
-    Entry e = parse_override(overrides[i], static_cast<int>(i + 1));
-    if (auto it = overridden.find(e.key); it != overridden.end())
-      throw error_at(e.at, e.key, "set twice on the command line");
-    overridden[e.key] = e.value;
-    by_key[e.key] = std::move(e);
+    const Origin at{"--set #" + std::to_string(i + 1)};
+    std::optional<Entry> e;
+    errors.collect(at, [&] { e = parse_override(overrides[i], static_cast<int>(i + 1)); });
+    if (!e) continue;
+    if (overridden.count(e->key)) {
+      errors.add(at, error_at(e->at, e->key, "set twice on the command line").what());
+      continue;
+    }
+    overridden[e->key] = e->value;
+    by_key[e->key] = std::move(*e);
   }
 
   Scene scene;
@@ -813,20 +891,25 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   }
   std::vector<RegionSpec> regions;
   for (const auto& [key, e] : by_key) {
-    if (key.rfind("region.", 0) == 0) {
-      regions.push_back(parse_region(e));
-      continue;
-    }
-    if (key.rfind("probe.", 0) == 0) {
-      scene.probes.push_back(parse_probe(e));
-      continue;
-    }
-    const Key* k = find_key(key);
-    if (!k) throw error_at(e.at, key, "unknown key" + did_you_mean(key));
-    if (k->kind == Kind::text && key == "output_dir") check_path(e.at, key, e.value);
-    if (k->default_text == "auto" && e.value == "auto") continue;
-    k->set(scene, e.value, e.at);
+    const Entry& entry = e;
+    errors.collect(e.at, [&] {
+      if (key.rfind("region.", 0) == 0) {
+        regions.push_back(parse_region(entry));
+        return;
+      }
+      if (key.rfind("probe.", 0) == 0) {
+        scene.probes.push_back(parse_probe(entry));
+        return;
+      }
+      const Key* k = find_key(key);
+      if (!k) throw error_at(entry.at, key, "unknown key" + did_you_mean(key));
+      if (k->kind == Kind::text && key == "output_dir") check_path(entry.at, key, entry.value);
+      if (k->default_text == "auto" && entry.value == "auto") return;
+      k->set(scene, entry.value, entry.at);
+    });
   }
+  // The consistency of the keys is judged only on keys that are each right.
+  errors.throw_if_any();
   // Regions and probes in the order the file lists them, not alphabetical.
   const auto line_of = [&](const std::string& key) {
     const std::string& w = by_key.at(key).at.where;
@@ -843,18 +926,35 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
 
   for (const auto& [key, e] : by_key) scene.origin[key] = e.at.where;
   if (scene.cfl < 0.0) scene.cfl = scene.dimension == 3 ? kCfl3D : kCfl2D;
-  check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; });
+  check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; }, errors);
+  errors.throw_if_any();
   if (scene.symmetry == Symmetry::automatic)
     scene.symmetry = asymmetry_of(scene).empty() ? Symmetry::on : Symmetry::off;
   return scene;
 }
 
+void check_input_file(const std::string& path, const std::string& what) {
+  const std::string cannot = path + ": cannot open the " + what + ": ";
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    const int err = errno;
+    struct stat link {};
+    if (err == ENOENT && ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode))
+      throw SceneError(cannot + "it is a symbolic link to a file that does not exist");
+    if (err == ELOOP) throw SceneError(cannot + std::strerror(err) + " (a loop of symbolic links)");
+    throw SceneError(cannot + std::strerror(err));
+  }
+  if (S_ISDIR(st.st_mode)) throw SceneError(cannot + "it is a directory, not a file");
+  if (!S_ISREG(st.st_mode))
+    throw SceneError(cannot + "it is " + (S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)" : S_ISSOCK(st.st_mode) ? "a socket" : "a device") +
+                     ", not a regular file; mpmshock reads only regular files");
+  if (::access(path.c_str(), R_OK) != 0) throw SceneError(cannot + std::strerror(errno));
+}
+
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throw SceneError(path + ": is a directory, not a scene file");
+  check_input_file(path, "scene file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open the scene file");
+  if (!in) throw SceneError(path + ": cannot open the scene file: " + std::strerror(errno));
   std::string text(kMaxSceneBytes + 1, '\0');
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.bad()) throw SceneError(path + ": cannot read the scene file");

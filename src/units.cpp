@@ -100,6 +100,31 @@ std::pair<std::string_view, std::string_view> split_number_unit(std::string_view
 
 }  // namespace
 
+std::string plain_spacing(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  const auto byte = [&](std::size_t k) { return k < text.size() ? static_cast<unsigned char>(text[k]) : 0u; };
+  for (std::size_t k = 0; k < text.size();) {
+    const unsigned a = byte(k), b = byte(k + 1), c = byte(k + 2);
+    std::size_t space = 0;  // the UTF-8 length of a space character here
+    if (a == 0xC2 && b == 0xA0) space = 2;                                      // U+00A0
+    else if (a == 0xE1 && b == 0x9A && c == 0x80) space = 3;                    // U+1680
+    else if (a == 0xE2 && b == 0x80 && ((c >= 0x80 && c <= 0x8A) || c == 0xAF)) space = 3;  // U+2000-200A, 202F
+    else if (a == 0xE2 && b == 0x81 && c == 0x9F) space = 3;                    // U+205F
+    else if (a == 0xE3 && b == 0x80 && c == 0x80) space = 3;                    // U+3000
+    if (space) {
+      out += ' ';
+      k += space;
+    } else if (a == 0xCE && b == 0xBC) {  // Greek mu
+      out += "\xC2\xB5";
+      k += 2;
+    } else {
+      out += text[k++];
+    }
+  }
+  return out;
+}
+
 std::string_view si_unit(Dimension dim) {
   switch (dim) {
     case Dimension::none: return "";
@@ -123,11 +148,13 @@ std::string accepted_units(Dimension dim) {
     if (!out.empty()) out += ", ";
     out += u.name;
   }
+  if (out.find("\xC2\xB5") != std::string::npos) out += " (\xC2\xB5: the micro sign or the Greek mu)";
   return out.empty() ? std::string("no unit") : out;
 }
 
-double parse_number(std::string_view text) {
-  text = trim(text);
+double parse_number(std::string_view raw) {
+  const std::string plain = plain_spacing(raw);
+  std::string_view text = trim(plain);
   if (text.empty()) throw std::invalid_argument("missing value");
   auto [number, rest] = split_number_unit(text);
   if (number.empty() || number == "+" || number == "-" || number == "." || !rest.empty())
@@ -142,8 +169,9 @@ double parse_number(std::string_view text) {
   return value;
 }
 
-double parse_quantity(std::string_view text, Dimension dim) {
-  text = trim(text);
+double parse_quantity(std::string_view raw, Dimension dim) {
+  const std::string plain = plain_spacing(raw);
+  std::string_view text = trim(plain);
   if (text.empty()) throw std::invalid_argument("missing value");
   auto [number, unit] = split_number_unit(text);
   if (number.empty() || number == "+" || number == "-")

@@ -146,6 +146,11 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Refuses (SceneError "PATH: cannot open the WHAT: REASON") a path that is not a regular file
+// that can be read, with the system's reason: missing, a dangling symlink or a symlink loop, a
+// directory, or a FIFO, socket or device (which would block or never end), or not readable.
+void check_input_file(const std::string& path, const std::string& what);
+
 // Reads a scene file and applies `overrides` ("key=value", from --set) on top.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 

@@ -26,7 +26,12 @@ std::string_view si_unit(Dimension dim);
 // The units a scene may write for a dimension, for error messages ("m, mm, um, nm").
 std::string accepted_units(Dimension dim);
 
-// Parses "12.5", "12.5 mm" or "12.5mm" into SI. A bare number is already SI.
+// The text with every Unicode space (no-break, thin, narrow no-break, ...: category Zs) as an ASCII
+// space and the Greek small letter mu (U+03BC) as the micro sign (U+00B5): they look the same as
+// what a unit is spelled with, so a scene means them so.
+std::string plain_spacing(std::string_view text);
+
+// Parses "12.5", "12.5 mm" or "12.5mm" into SI (after plain_spacing: "12.5 μm" too). A bare number is already SI.
 // Throws std::invalid_argument with a message that says what is wrong (no location:
 // the caller knows the file, line and key and adds them).
 double parse_quantity(std::string_view text, Dimension dim);
