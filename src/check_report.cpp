@@ -4,6 +4,7 @@
 #include <sstream>
 #include <vector>
 
+#include "mpmshock/probes.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/setup.hpp"
 #include "mpmshock/simulation.hpp"
@@ -56,12 +57,19 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
       << "\n";
   const Model model(s);
   const double signal = initial_signal_speed(st.particles, model);
-  const double dt0 = s.cfl * s.cell_size / signal;
+  const double dt0 = model.time_step(signal), mechanical = s.cfl * s.cell_size / signal;
   // Shocked material carries sound faster than c0; dt shrinks as the run goes, so this is a floor.
   const auto steps = static_cast<long long>(std::ceil(s.end_time / dt0));
-  out << "time step: " << dt0 * 1e9 << " ns at start (cfl " << s.cfl << ", fastest signal " << signal
-      << " m/s); at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
+  out << "time step: " << dt0 * 1e9 << " ns at start, ";
+  if (dt0 < mechanical)
+    out << "set by heat conduction (0.2 h^2 / diffusivity, diffusivity " << model.diffusivity
+        << " m2/s; the sound limit, cfl " << s.cfl << " at " << signal << " m/s, allows " << mechanical * 1e9
+        << " ns)";
+  else
+    out << "set by sound (cfl " << s.cfl << ", fastest signal " << signal << " m/s)";
+  out << "; at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
   for (const std::string& w : scene_warnings(s)) out << "warning: " << w << "\n";
+  if (const std::string w = probes_size_warning(s, dt0); !w.empty()) out << "warning: " << w << "\n";
   // Every effect the run simulates, and none that it does not.
   std::vector<std::string> on;
   if (s.effects.plasticity) on.push_back(s.effects.thermal_softening ? "plasticity (with thermal softening)" : "plasticity");
@@ -94,8 +102,14 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
 
 template <int D>
 std::string check_in(const Scene& scene) {
-  check_fits<D>(scene);
-  return describe_setup(scene, build_initial_state<D>(scene));
+  const Comm& comm = Comm::world();  // refuse on mpirun what the run on as many ranks refuses
+  check_fits<D>(scene, comm.size(), comm.node_ranks());
+  const InitialState<D> whole = build_initial_state<D>(scene);
+  // The probes are resolved as the run resolves them (a point probe in a void is refused): on
+  // several ranks from each rank's share, as the run makes them.
+  if (comm.parallel()) probes_of(scene, InitialBuilder<D>(scene).build_share(comm.rank(), comm.size()), comm);
+  else probes_of(scene, whole, comm);
+  return describe_setup(scene, whole);
 }
 
 }  // namespace

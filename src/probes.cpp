@@ -10,13 +10,38 @@
 
 namespace mpmshock {
 
-const char* const kProbesHeader = "time,probe,count,x,y,velocity_x,velocity_y,pressure,density,temperature";
+std::string probes_header(bool paper_temperature, int dimension) {
+  return std::string(dimension == 3 ? "time,probe,count,x,y,z,velocity_x,velocity_y,velocity_z"
+                                    : "time,probe,count,x,y,velocity_x,velocity_y") +
+         ",pressure,density,temperature" + (paper_temperature ? ",paper_temperature" : "");
+}
 
-std::string probes_header(bool paper_temperature) {
-  return std::string(kProbesHeader) + (paper_temperature ? ",paper_temperature" : "");
+std::string probes_size_warning(const Scene& s, double first_step) {
+  if (s.probes.empty() || !(first_step > 0.0)) return "";
+  const bool every_step = s.probe_interval <= 0.0;
+  const double rows = std::floor(s.end_time / (every_step ? first_step : s.probe_interval)) + 1.0;
+  // Each number is written with 10 significant digits (about 17 characters with its comma).
+  const std::string header = probes_header(s.paper_temperature, s.dimension);
+  const double numbers = static_cast<double>(std::count(header.begin(), header.end(), ',')), per_row = 17.0 * numbers;
+  double bytes = 0.0;
+  for (const ProbeSpec& probe : s.probes) bytes += rows * (per_row + static_cast<double>(probe.name.size()));
+  if (bytes < kProbesWarnBytes) return "";
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "probes: %zu probes %s write %s%.0f MB to probes.csv (%.3g rows each); a larger probe_interval "
+                "writes less",
+                s.probes.size(), every_step ? "every step" : "at probe_interval", every_step ? "at least " : "about ",
+                bytes / 1e6, rows);
+  return text;
 }
 
 namespace {
+
+std::string format_length(double metres) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g um", metres * 1e6);
+  return text;
+}
 
 // Every rank's ids, in increasing order, at every rank.
 std::vector<std::uint32_t> ids_of_all_ranks(const std::vector<std::uint32_t>& mine, const Comm& comm) {
@@ -88,6 +113,16 @@ Probes<D>::Probes(const Scene& scene, const Particles<D>& p, const GridGeometry<
       });
       const double least = comm.min(best);
       const double id = comm.min(best == least ? static_cast<double>(nearest) : std::numeric_limits<double>::infinity());
+      // A probe follows the material at the point asked for; with none within a cell of it (a
+      // void there) it would follow some other material under the name.
+      if (!(std::sqrt(least) <= scene.cell_size)) {
+        char where[160];
+        if constexpr (D == 3) std::snprintf(where, sizeof where, "(%g, %g, %g) m", spec.x, spec.y, z);
+        else std::snprintf(where, sizeof where, "(%g, %g) m", spec.x, spec.y);
+        throw SceneError(scene.where("probe." + spec.name) + ": key 'probe." + spec.name + "': no material point lies "
+                         "within a cell of " + where + " at t = 0 (the nearest is " + format_length(std::sqrt(least)) +
+                         " away: a void?); choose a point in the material");
+      }
       probe.ids.push_back(static_cast<std::uint32_t>(id));
     }
     probes_.push_back(std::move(probe));
@@ -103,7 +138,7 @@ double Probes<D>::next_after(double t) const {
 template <int D>
 void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal,
                            const MirrorImage<D>& mirror, const Comm& comm) const {
-  enum { kX, kY, kVx, kVy, kP, kRho, kT, kPaperT, kSums };
+  enum { kX, kY, kZ, kVx, kVy, kVz, kP, kRho, kT, kPaperT, kSums };
   const bool paper = thermal && thermal->reports_paper_temperature();
   std::vector<ExactSum> sums(probes_.size() * kSums);
   for (std::size_t k = 0; k < probes_.size(); ++k) {
@@ -118,6 +153,10 @@ void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, c
       s[kY].add(y_sign * p.x[q][1]);
       s[kVx].add(p.v[q][0]);
       s[kVy].add(y_sign * p.v[q][1]);
+      if constexpr (D == 3) {
+        s[kZ].add(p.x[q][2]);
+        s[kVz].add(p.v[q][2]);
+      }
       s[kP].add(p.P[q]);
       s[kRho].add(p.density(q));
       s[kT].add(thermal ? thermal->of_point(p, q) : std::nan(""));
@@ -130,8 +169,11 @@ void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, c
     const Probe& probe = probes_[k];
     const double n = static_cast<double>(probe.ids.size());
     auto mean = [&](int i) { return sums[k * kSums + i].value() / n; };
-    std::fprintf(out, "%.10g,%s,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g", time, probe.name.c_str(),
-                 probe.ids.size(), mean(kX), mean(kY), mean(kVx), mean(kVy), mean(kP), mean(kRho), mean(kT));
+    std::fprintf(out, "%.10g,%s,%zu,%.10g,%.10g,", time, probe.name.c_str(), probe.ids.size(), mean(kX), mean(kY));
+    if (D == 3) std::fprintf(out, "%.10g,", mean(kZ));
+    std::fprintf(out, "%.10g,%.10g,", mean(kVx), mean(kVy));
+    if (D == 3) std::fprintf(out, "%.10g,", mean(kVz));
+    std::fprintf(out, "%.10g,%.10g,%.10g", mean(kP), mean(kRho), mean(kT));
     if (paper) std::fprintf(out, ",%.10g", mean(kPaperT));
     std::fputc('\n', out);
   }

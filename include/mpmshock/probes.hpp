@@ -17,9 +17,15 @@
 
 namespace mpmshock {
 
-// probes.csv's header; paper_temperature = on adds the column paper_temperature at the end.
-extern const char* const kProbesHeader;
-std::string probes_header(bool paper_temperature);
+// probes.csv's header; 3D adds z and velocity_z, paper_temperature = on the column
+// paper_temperature at the end.
+std::string probes_header(bool paper_temperature, int dimension);
+
+// A warning (empty if none) where the scene's probes would write more than kProbesWarnBytes to
+// probes.csv, with every-step probes counted at `first_step`, the first time step (steps only get
+// shorter, so that is a lower bound).
+constexpr double kProbesWarnBytes = 50e6;
+std::string probes_size_warning(const Scene& scene, double first_step);
 
 template <int D>
 class Probes {
@@ -28,7 +34,8 @@ class Probes {
   // Resolves the scene's probes on the initial points (the state every run and restart of the
   // scene starts from) in the grid's periodic column: the points simulated, with the flyer as
   // their mirror image where that is on. On MPI ranks each rank passes a share of the points (any
-  // split, every point on one rank) and every rank gets the same probes.
+  // split, every point on one rank) and every rank gets the same probes. Refuses (SceneError) a
+  // point probe with no material point within a cell of it.
   Probes(const Scene& scene, const Particles<D>& initial, const GridGeometry<D>& grid, const MirrorImage<D>& mirror,
          const Comm& comm);
 
