@@ -174,13 +174,58 @@ def test_edited_with_checksum(mpmshock, source, tmp_path, name):
     expect_refused(mpmshock, snap, "do not match their checksum")
 
 
+MASK = (1 << 64) - 1
+FNV_OFFSET, FNV_PRIME = 14695981039346656037, 1099511628211
+
+
+def fnv1a(data, h=FNV_OFFSET):
+    for b in data:
+        h = ((h ^ b) * FNV_PRIME) & MASK
+    return h
+
+
+def fnv1a_words(data):
+    """The word hash of src/snapshot.cpp, written out again: 8-byte little-endian words to four
+    lanes in turn (the words past the last group of four to lane 0), the bytes past the last word
+    hashed as bytes, then the lanes and that tail hashed as bytes."""
+    whole = len(data) // 8
+    words = np.frombuffer(data[:8 * whole], dtype="<u8").tolist()
+    lanes = [FNV_OFFSET ^ k for k in range(4)]
+    groups = whole // 4 * 4
+    for k in range(groups):
+        lanes[k % 4] = ((lanes[k % 4] ^ words[k]) * FNV_PRIME) & MASK
+    for k in range(groups, whole):
+        lanes[0] = ((lanes[0] ^ words[k]) * FNV_PRIME) & MASK
+    tail = fnv1a(data[8 * whole:])
+    return fnv1a(b"".join(v.to_bytes(8, "little") for v in lanes + [tail]))
+
+
 def test_checksum_in_the_user_block(source):
     """Format 2 keeps a checksum of the file's bytes in HDF5's user block, which every HDF5 reader
-    skips: h5py opens the file as usual."""
-    head = (source / "snapshot_00001.h5").read_bytes()[:512]
-    assert head.startswith(b"mpmshock snapshot checksum fnv1a64 ")
+    skips: h5py opens the file as usual, and the checksum is the word hash of every byte after the
+    block, as the docs define it."""
+    data = (source / "snapshot_00001.h5").read_bytes()
+    line = data[:512].split(b"\n")[0].decode()
+    body = data[512:]
+    assert line == f"mpmshock snapshot checksum fnv1a64-words {fnv1a_words(body):016x} bytes {len(body)}"
     with h5py.File(source / "snapshot_00001.h5", "r") as f:
         assert f.userblock_size == 512 and f.attrs["format_version"] == 2
+
+
+def test_byte_sealed_snapshot_still_restarts(mpmshock, source, tmp_path):
+    """Snapshots sealed by the byte hash (before the word hash) still restart, and a flipped bit in
+    one is still caught."""
+    d = damaged_copy(source, tmp_path)
+    snap = d / "snapshot_00001.h5"
+    data = bytearray(snap.read_bytes())
+    body = bytes(data[512:])
+    line = f"mpmshock snapshot checksum fnv1a64 {fnv1a(body):016x} bytes {len(body)}\n".encode()
+    data[:512] = line + b"\0" * (512 - len(line))
+    snap.write_bytes(bytes(data))
+    run(mpmshock, "--restart", snap, "--quiet", "--force", "--set", "end_time=40ns", check_rc=0)
+    data[len(data) // 2] ^= 0x10
+    snap.write_bytes(bytes(data))
+    expect_refused(mpmshock, snap, "do not match their checksum")
 
 
 def test_foreign_files(mpmshock, source, tmp_path):
