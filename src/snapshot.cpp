@@ -258,7 +258,7 @@ void write_grid(hid_t file, const SnapshotOptions<D>& o) {
 // FNV-1a, 64 bits: a checksum, not a cryptographic hash; it catches the flipped bits and cut
 // files of a damaged disk or copy, not a forger. Snapshots of format 2 hash byte by byte; those
 // written now hash 8-byte words in four interleaved lanes (FNV-1a's step on each word), which
-// runs at memory speed: sealing a 250 MB snapshot takes 0.05 s instead of 0.35 s, which matters
+// runs at memory speed: sealing a 253 MB snapshot took 0.09 s instead of 0.35 s, which matters
 // for the snapshot written when a run is told to stop (mpirun kills the ranks a second later).
 class Fnv1a {
  public:
