@@ -177,7 +177,7 @@ echo "SIGTERM to one rank: all stopped at $(sed -n 's/.*at t = \([0-9.e+]*\) ns.
 # snapshot itself must be there.
 printf 'porosity = 1\nwidth = 1 mm\ntarget_height = 1 mm\nflyer_height = 0.6 mm\ncell_size = 5 um\n' > big.scene
 printf 'end_time = 5 us\nsample_interval = 2 ns\nsnapshot_interval = 0\nsnapshot_compression = 9\n' >> big.scene
-stop_mpirun() {  # stop_mpirun DIR MPIRUN_OPTIONS...: run, SIGTERM to mpirun once regions.csv has rows
+stop_mpirun() {  # stop_mpirun DIR MPIRUN_OPTIONS...: run, SIGTERM to mpirun once the time loop runs
   local dir=$1
   shift
   # mpirun itself, as a user starts it (not under timeout, which would signal the ranks directly).
@@ -185,7 +185,8 @@ stop_mpirun() {  # stop_mpirun DIR MPIRUN_OPTIONS...: run, SIGTERM to mpirun onc
     >"$dir.out" 2>"$dir.err" &
   local launcher=$!
   while kill -0 "$launcher" 2>/dev/null; do
-    [ -f "$dir/regions.csv" ] && [ "$(wc -l < "$dir/regions.csv")" -ge 4 ] && break
+    # In the time loop: the first snapshot finished and samples after it (6 regions a sample).
+    [ -f "$dir/snapshot_00000.h5" ] && [ "$(wc -l < "$dir/regions.csv")" -ge 40 ] && break
     sleep 0.05
   done
   kill -TERM "$launcher"
