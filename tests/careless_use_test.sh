@@ -7,25 +7,12 @@
 # refused request changes nothing already written.
 # usage: careless_use_test.sh MPMSHOCK_BINARY TESTS_DATA_DIR
 set -u
+source "$(dirname "${BASH_SOURCE[0]}")/expect.sh"
 bin=$(realpath "$1")
 data=$(realpath "$2")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
-failures=0
-
-fail() { echo "FAILED: $*" >&2; failures=$((failures + 1)); }
-
-# expect CODE PATTERN -- ARGS...: run mpmshock, check the exit code and that stdout+stderr match.
-expect() {
-  local code=$1 pattern=$2
-  shift 3
-  local out rc
-  out=$(timeout 120 "$bin" "$@" 2>&1)
-  rc=$?
-  [ "$rc" -eq "$code" ] || fail "mpmshock $*: exit $rc, expected $code; output: $out"
-  echo "$out" | grep -qE -- "$pattern" || fail "mpmshock $*: output lacks /$pattern/: $out"
-}
 # A digest of every file of a directory, to show that a refused request changed nothing.
 digest() { (cd "$1" && find . -type f ! -name .mpmshock.lock | sort | xargs md5sum); }
 # The first data row's time of a CSV file.

@@ -3,25 +3,12 @@
 # nothing written on bad input, --check, --set, and refusal to overwrite an earlier run.
 # usage: cli_test.sh MPMSHOCK_BINARY TESTS_DATA_DIR
 set -u
+source "$(dirname "${BASH_SOURCE[0]}")/expect.sh"
 bin=$1
 data=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work" || exit 1
-failures=0
-
-fail() { echo "FAILED: $*" >&2; failures=$((failures + 1)); }
-
-# expect CODE PATTERN -- ARGS...: run mpmshock, check the exit code and that stdout+stderr match.
-expect() {
-  local code=$1 pattern=$2
-  shift 3
-  local out rc
-  out=$("$bin" "$@" 2>&1)
-  rc=$?
-  [ "$rc" -eq "$code" ] || fail "mpmshock $*: exit $rc, expected $code; output: $out"
-  echo "$out" | grep -qE -- "$pattern" || fail "mpmshock $*: output lacks /$pattern/: $out"
-}
 
 expect 0 "usage: mpmshock SCENE" -- --help
 expect 0 "^mpmshock [0-9]+\.[0-9]+\.[0-9]+" -- --version
