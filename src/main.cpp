@@ -23,6 +23,7 @@ namespace {
 
 constexpr const char* kUsage = R"(usage: mpmshock SCENE [--set key=value]... [--check] [--quiet] [--force] [--threads N [--fixed-threads]]
        mpmshock --restart SNAPSHOT [--set key=value]... [--check] [--quiet] [--force] [--threads N [--fixed-threads]]
+       mpmshock --resolve SCENE [--set key=value]...
        mpmshock --help | --version | --keys
 
 Runs the material-point simulation of the impact that SCENE (a key = value file) describes and
@@ -40,6 +41,8 @@ summary.json into its output_dir.
   --threads N      use at most N threads (default: OMP_NUM_THREADS or all cores); the run
                    measures its steps and uses fewer where that is faster (a busy machine)
   --fixed-threads  use all the threads for every step, even where fewer would be faster
+  --resolve        print the scene as a run would resolve it (every key, in SI, with the
+                   --set overrides and the defaults: the scene.txt the run would write) and exit
   --keys           print the table of scene keys (unit, default, meaning) and exit
   --help           this text
   --version        the version
@@ -64,7 +67,7 @@ struct Args {
   std::string scene;
   std::string restart;
   std::vector<std::string> overrides;
-  bool check = false, quiet = false, force = false, fixed_threads = false;
+  bool check = false, resolve = false, quiet = false, force = false, fixed_threads = false;
   int threads = 0;
 };
 
@@ -98,6 +101,8 @@ Args parse_args(int argc, char** argv) {
       a.overrides.push_back(arg.substr(6));
     } else if (arg == "--restart") {
       a.restart = value("--restart");
+    } else if (arg == "--resolve") {
+      a.resolve = true;
     } else if (arg == "--check") {
       a.check = true;
     } else if (arg == "--quiet" || arg == "-q") {
@@ -122,6 +127,8 @@ Args parse_args(int argc, char** argv) {
   }
   if (!a.restart.empty() && !a.scene.empty()) usage_error("give a scene file or --restart SNAPSHOT, not both");
   if (a.scene.empty() && a.restart.empty()) usage_error("no scene file given");
+  if (a.resolve && !a.restart.empty()) usage_error("--resolve takes a scene file (a run's resolved scene is its scene.txt)");
+  if (a.resolve && a.check) usage_error("give --resolve or --check, not both");
   return a;
 }
 
@@ -170,6 +177,10 @@ int run(const Args& args) {
     return result.exit_code;
   }
   const mpmshock::Scene scene = mpmshock::load_scene(args.scene, args.overrides);
+  if (args.resolve) {
+    if (speaks()) std::fputs(mpmshock::resolved_scene(scene).c_str(), stdout);
+    return mpmshock::kExitOk;
+  }
   if (args.check) {
     const std::string text = mpmshock::check_report(scene);
     if (speaks()) std::fputs(text.c_str(), stdout);
