@@ -4,9 +4,9 @@
 import numpy as np
 
 from .errors import PostError
-from .labels import run_labels
-from .style import (COLORS, LINESTYLES, MARKERS, keep_min_span, mark_every, missing_reason, note_missing, panel_figure,
-                    short_ticks, time_axis)
+from .labels import common_case_label, run_labels
+from .style import (COLORS, LINESTYLES, MARKERS, add_resolution_note, keep_min_span, mark_every, missing_reason,
+                    note_missing, panel_figure, short_ticks, time_axis)
 from .timeseries import in_time_range, select_regions
 from .units import TIME, quantity
 
@@ -28,7 +28,9 @@ def plot_compare(runs, quantities=("density",), regions=(), labels=None, trange=
                  offsets=None):
     """A panel per quantity; a colour per run, a line style per region (default: the first run's
     first region). `offsets`: quantity -> one shift per run in display units, added to its curves
-    and noted in the panel (the paper's Fig. 13 moves the density of delta 1.1, 1.4, 1.7 up)."""
+    and noted in the panel (the paper's Fig. 13 moves the density of delta 1.1, 1.4, 1.7 up).
+    The default title names the region(s) and what the runs share (compare_title); the footer
+    states their resolution."""
     columns = [column_of(name) for name in quantities]
     regions = list(regions) or list(select_regions(runs[0], ()))[:1]
     labels = list(labels) if labels else run_labels(runs)
@@ -78,6 +80,14 @@ def plot_compare(runs, quantities=("density",), regions=(), labels=None, trange=
     handles, legend_labels = axes[0].get_legend_handles_labels()
     axes[-1].legend(handles, legend_labels, loc="center", fontsize=8,
                     title=f"region {regions[0]}" if len(regions) == 1 else None)
-    if title is not None:
-        fig.suptitle(title)
+    fig.suptitle(title if title is not None else compare_title(runs, regions))
+    add_resolution_note(fig, [run.scene for run in runs], labels)
     return fig
+
+
+def compare_title(runs, regions):
+    """'2 runs, region B800: δ=1.2, r=15 µm': the region(s) and the paper's keys the runs share
+    (the legend names those that differ)."""
+    where = f"region{'s' if len(regions) > 1 else ''} {', '.join(regions)}"
+    common = common_case_label(runs)
+    return f"{len(runs)} runs, {where}" + (f": {common}" if common else "")

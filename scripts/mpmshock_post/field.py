@@ -12,18 +12,28 @@ that the slice holds one whole layer rather than parts of two. Arrows show the i
 (u_x, u_y); `speed` is |u| with u_z.
 """
 
+import re
 from typing import NamedTuple
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import MultipleLocator
 
 from .errors import PostError
 from .labels import case_label
 from .local import local_quantity
+from .reader import void_count
+from .style import FOOTER_LINE_IN, add_footer, resolution_lines
 from .units import LENGTH_FACTOR, TIME, quantity
 
 _BODIES = {"flyer": 0, "target": 1}
-_MARGINS_IN = dict(left=0.9, right=1.4, bottom=0.6, top=0.7)  # room for ticks, colourbar, title
+_MARGINS_IN = dict(left=0.9, right=1.4, bottom=0.6, top=0.15)  # room for ticks, colourbar; title and footer add theirs
+_MIN_FIGURE_WIDTH_IN = 5.0   # a narrow column still gets a figure wide enough for its title
+_TITLE_LINE_IN = 0.2         # a 10 pt title line
+_TITLE_CHARS_PER_IN = 11     # 10 pt text: about 11 characters an inch
+_ARROW_KEY_ROW_IN = 0.3      # between the axes and the title, for the arrow key
+_DIGIT_IN = 0.09             # width of a digit of a 10 pt tick label
+_TICK_GAP_IN = 0.15          # least blank between two x tick labels
 _ARROWS_ACROSS = 20  # arrows along the window's width: readable, yet they follow the voids
 # Quantities with a fixed range: damage is 0 or 1, and a few failed points must not set the scale.
 _FIXED_LIMITS = {"damage": (0.0, 1.0)}
@@ -209,13 +219,22 @@ def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window
     x0, x1, y0, y1 = window
     ax_w, ax_h = _axes_size(x1 - x0, y1 - y0)
     m = _MARGINS_IN
-    fig_w, fig_h = ax_w + m["left"] + m["right"], ax_h + m["bottom"] + m["top"]
+    fig_w = max(ax_w + m["left"] + m["right"], _MIN_FIGURE_WIDTH_IN)
+    title_room_in = fig_w - m["left"] - 0.1  # the title starts at the axes' left edge
+    if title is None:
+        title = _default_title(snapshot, run_name, slab, title_room_in)
+    footer = resolution_lines([snapshot.scene], width_in=fig_w)
+    bottom = m["bottom"] + len(footer) * FOOTER_LINE_IN + 0.05
+    title_pad_in = _ARROW_KEY_ROW_IN if arrows else 0.08
+    top = m["top"] + title_pad_in + _TITLE_LINE_IN * len(title.splitlines())
+    fig_h = ax_h + bottom + top
     fig = Figure(figsize=(fig_w, fig_h))
-    ax = fig.add_axes([m["left"] / fig_w, m["bottom"] / fig_h, ax_w / fig_w, ax_h / fig_h])
-    colorbar_ax = fig.add_axes([(m["left"] + ax_w + 0.15) / fig_w, m["bottom"] / fig_h, 0.18 / fig_w, ax_h / fig_h])
+    ax = fig.add_axes([m["left"] / fig_w, bottom / fig_h, ax_w / fig_w, ax_h / fig_h])
+    colorbar_ax = fig.add_axes([(m["left"] + ax_w + 0.15) / fig_w, bottom / fig_h, 0.18 / fig_w, ax_h / fig_h])
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
+    ax.xaxis.set_major_locator(MultipleLocator(_tick_step(x0, x1, ax_w)))
 
     points_per_unit = ax_w * 72.0 / (x1 - x0)  # typographic points per displayed length unit
     sizes = (_marker_side_um(snapshot, points, true_size) / length_unit_um * points_per_unit) ** 2
@@ -226,18 +245,44 @@ def plot_field(snapshot, color="density", arrows=False, arrow_scale=None, window
     fig.colorbar(scatter, cax=colorbar_ax, label=q.label(),
                  extend=extend[(bool(np.nanmin(values) < vmin), bool(np.nanmax(values) > vmax))])
     if arrows:
-        key_xy = ((m["left"] + ax_w + 0.25) / fig_w, (m["bottom"] + ax_h + 0.12) / fig_h)
+        key_xy = ((m["left"] + ax_w + 0.25) / fig_w, (bottom + ax_h + 0.12) / fig_h)
         scale = None if arrow_scale is None else arrow_scale / length_unit_um
         _draw_arrows(ax, xy, snapshot["velocity"][points, :2], window, scale, key_xy)
 
     length = "µm" if length_unit_um == 1.0 else f"{length_unit_um:g} µm"
     ax.set_xlabel(f"$x$ ({length})")
     ax.set_ylabel(f"$y$ ({length})")
-    if title is None:
-        case = case_label(snapshot.scene) if snapshot.scene is not None else ""
-        joiner = ": " if ax_w >= 4.0 else "\n"  # a narrow column: one item a line, clear of the arrow key
-        title = joiner.join(part for part in (run_name, case) if part) + f"\nt = {snapshot.time * TIME.factor:.4g} ns"
-        if slab is not None:
-            title += (", " if ax_w >= 4.0 else "\n") + slab.describe()
-    ax.set_title(title, fontsize=10, loc="left")
+    ax.set_title(title, fontsize=10, loc="left", pad=title_pad_in * 72.0)
+    add_footer(fig, footer)
     return fig
+
+
+def _tick_step(x0, x1, ax_w):
+    """The x tick spacing, in display length units: the smallest of 1, 2, 2.5, 5 x 10^k that
+    leaves a blank of _TICK_GAP_IN between the labels on axes ax_w inches wide (about 10 ticks on
+    a wide window, one or two on a narrow column), halved where no tick would be left."""
+    characters = max(len(f"{round(x):d}") for x in (x0, x1)) + (2 if x1 - x0 < 10.0 else 0)  # '-150', '2.5'
+    least = max((characters * _DIGIT_IN + _TICK_GAP_IN) * (x1 - x0) / ax_w, (x1 - x0) / 10.0)
+    decade = 10.0 ** np.floor(np.log10(least))
+    step = next(decade * m for m in (1.0, 2.0, 2.5, 5.0, 10.0) if decade * m >= least)
+    while np.floor(x1 / step) * step < x0:  # no multiple of the step inside the window
+        step /= 2.0
+    return step
+
+
+def _shown_length(text):
+    """Characters a mathtext string shows: '$\\delta$=1.2' shows 5."""
+    return len(re.sub(r"\\[A-Za-z]+", "x", text).replace("$", "").replace("{", "").replace("}", ""))
+
+
+def _default_title(snapshot, run_name, slab, room_in):
+    """'run: δ=1.2, r=15 µm, v=1000 m/s' over 't = 60 ns' (, the 3D slice); an item gets a line of
+    its own where its line would not fit `room_in` inches."""
+    case = case_label(snapshot.scene, void_count(snapshot.path.parent)) if snapshot.scene is not None else ""
+    when = [f"t = {snapshot.time * TIME.factor:.4g} ns"] + ([slab.describe()] if slab is not None else [])
+    room = int(room_in * _TITLE_CHARS_PER_IN)
+    lines = []
+    for items, joiner in (([part for part in (run_name, case) if part], ": "), (when, ", ")):
+        joined = joiner.join(items)
+        lines += [joined] if _shown_length(joined) <= room else items
+    return "\n".join(line for line in lines if line)

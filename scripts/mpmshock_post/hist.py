@@ -6,9 +6,10 @@ import numpy as np
 from .errors import PostError
 from .labels import case_label
 from .local import has_quantity, local_quantity
+from .reader import void_count
 from .regions import region_points
 from .stats import moments
-from .style import COLORS, note_missing, panel_figure, thermal_off
+from .style import COLORS, add_resolution_note, note_missing, panel_figure, thermal_off
 from .units import TIME, quantity
 
 QUANTITIES = ("density", "pressure", "temperature", "velocity_x", "velocity_y")
@@ -57,7 +58,9 @@ def _gaussian(x, mean, std):
 
 
 def plot_histograms(snapshots, region, bins=50, title=None, run_name=None):
-    """One panel per quantity, one histogram (probability density) per snapshot time."""
+    """One panel per quantity, one histogram (probability density) per snapshot time: x in the
+    quantity's display unit, y in its inverse (cm³/g for density). The footer states the run's
+    resolution."""
     fig, axes = panel_figure(len(QUANTITIES), ncols=3)
     for ax, name in zip(axes, QUANTITIES):
         q = quantity(name)
@@ -86,15 +89,23 @@ def plot_histograms(snapshots, region, bins=50, title=None, run_name=None):
             if std > 0:
                 ax.plot(x, _gaussian(x, mean, std), color=color, linestyle="--", linewidth=1)
         ax.set_xlabel(q.label())
-        ax.set_ylabel(f"probability density (1/{q.unit_tex or q.unit})" if q.unit else "probability density")
+        ax.set_ylabel(density_label(q))
         ax.legend(fontsize=7, loc="upper right")
     axes[-1].text(0.05, 0.5, f"region {region}\n\nsolid: histogram of the local values\n"
                   "dashed: Gaussian of the same mean\nand standard deviation\n\n"
                   "S: skewness\nK: excess kurtosis (0 for a Gaussian)\n"
                   "(over all points; the axes show\nthe central 99% of them)",
                   transform=axes[-1].transAxes, va="center", fontsize=9)
+    scene = snapshots[0].scene
     if title is None:
-        scene = snapshots[0].scene
-        title = f"{run_name + ': ' if run_name else ''}{case_label(scene) if scene is not None else ''}"
+        case = case_label(scene, void_count(snapshots[0].path.parent)) if scene is not None else ""
+        title = ": ".join(part for part in (run_name, case) if part)
     fig.suptitle(title)
+    add_resolution_note(fig, [scene])
     return fig
+
+
+def density_label(q):
+    """The y label of a histogram of q normalised to unit area: 'probability density (cm$^3$/g)'."""
+    inverse = q.inverse_unit()
+    return f"probability density ({inverse})" if inverse else "probability density"

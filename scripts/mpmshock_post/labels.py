@@ -13,6 +13,8 @@ _DISPLAY_UNITS = {"m": (1e6, "µm"), "s": (1e9, "ns"), "Pa": (1e-9, "GPa")}
 _NOT_THE_CASE = ("output_dir", "sample_interval", "snapshot_interval", "probe_interval", "grid_margin")
 _NOT_THE_CASE_PREFIXES = ("region.", "probe.", "snapshot_")
 _MOST_KEYS_IN_A_LABEL = 3
+# Keys that describe the voids: they say nothing about a solid run (porosity 1, or no voids laid out).
+_VOID_KEYS = ("void_radius", "void_radius_spread", "void_min_gap", "void_overlap", "seed")
 
 
 def format_key(scene, key):
@@ -28,9 +30,65 @@ def format_key(scene, key):
     return f"{symbol}={value}" + (f" {unit}" if unit else "")
 
 
-def case_label(scene):
-    """The case as the paper names it: 'δ=1.03, r=50 µm, v=1000 m/s'."""
-    return ", ".join(format_key(scene, key) for key in _PAPER_KEYS if key in scene)
+def is_solid(scene, void_count=None):
+    """A run without voids: porosity 1 (or less), or no void laid out (`void_count`, the rows of
+    voids.csv, 0: a porosity too close to 1 for one void); None: unknown, the porosity decides."""
+    return float(scene.get("porosity", 1.0)) <= 1.0 or void_count == 0
+
+
+def case_label(scene, void_count=None):
+    """The case as the paper names it: 'δ=1.03, r=50 µm, v=1000 m/s'; a solid run has no void
+    radius: 'δ=1, v=1000 m/s', or 'δ=1.001 (no voids), v=...' when none could be laid out."""
+    solid = is_solid(scene, void_count)
+    parts = []
+    for key in _PAPER_KEYS:
+        if key not in scene or (solid and key in _VOID_KEYS):
+            continue
+        text = format_key(scene, key)
+        if key == "porosity" and solid and float(scene[key]) > 1.0:
+            text += " (no voids)"
+        parts.append(text)
+    return ", ".join(parts)
+
+
+def run_void_count(run):
+    """The run's void count (reader.Run.void_count), None for an object that cannot tell."""
+    return run.void_count() if hasattr(run, "void_count") else None
+
+
+def run_case_label(run):
+    """case_label of a reader.Run, with its void count."""
+    return case_label(run.scene, run_void_count(run))
+
+
+def resolution_parts(scene):
+    """The resolution of a run, from its scene, in pieces a caption joins or wraps: 'cell 10 µm',
+    '2 × 2 points per cell', 'bspline2 shape functions'."""
+    parts = []
+    if isinstance(scene.get("cell_size"), float):
+        parts.append(f"cell {scene['cell_size'] * 1e6:.4g} µm")
+    per_axis = scene.get("particles_per_cell")
+    if isinstance(per_axis, float):
+        parts.append(" × ".join([f"{per_axis:g}"] * scene.dimension) + " points per cell")
+    if isinstance(scene.get("shape_function"), str):
+        parts.append(f"{scene['shape_function']} shape functions")
+    return parts
+
+
+def resolution_label(scene):
+    """'cell 10 µm, 2 × 2 points per cell, bspline2 shape functions' ('resolution not stated' for a
+    scene without those keys)."""
+    return ", ".join(resolution_parts(scene)) or "resolution not stated in the scene"
+
+
+def common_case_label(runs):
+    """The paper's keys (δ, r, v) that are the same in every run, as case_label writes them; the
+    void radius only when every run has voids."""
+    first = runs[0].scene
+    solid = any(is_solid(run.scene, run_void_count(run)) for run in runs)
+    same = [key for key in _PAPER_KEYS if key in first and not (solid and key in _VOID_KEYS)
+            and all(key in run.scene and run.scene[key] == first[key] for run in runs)]
+    return ", ".join(format_key(first, key) for key in same)
 
 
 def _names_the_case(key):
@@ -43,7 +101,7 @@ def run_labels(runs):
     simulator version) is skipped. A single run gets its case label; runs of one and the same
     scene get their directory names."""
     if len(runs) == 1:
-        return [case_label(runs[0].scene) or runs[0].name]
+        return [run_case_label(runs[0]) or runs[0].name]
     common = [key for key in runs[0].scene if _names_the_case(key) and all(key in run.scene for run in runs)]
     differing = [key for key in common if len({repr(run.scene[key]) for run in runs}) > 1]
     differing.sort(key=lambda key: key not in _PAPER_KEYS)  # stable: file order otherwise
@@ -51,4 +109,9 @@ def run_labels(runs):
         return [run.name for run in runs]
     shown, hidden = differing[:_MOST_KEYS_IN_A_LABEL], len(differing) - _MOST_KEYS_IN_A_LABEL
     more = f" (+{hidden} more)" if hidden > 0 else ""
-    return [", ".join(format_key(run.scene, key) for key in shown) + more for run in runs]
+    labels = []
+    for run in runs:
+        solid = is_solid(run.scene, run_void_count(run))
+        label = ", ".join(format_key(run.scene, key) for key in shown if not (solid and key in _VOID_KEYS))
+        labels.append(label + more if label else run.name)
+    return labels

@@ -12,8 +12,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .errors import PostError, select_named
-from .labels import case_label, run_labels
-from .style import COLORS, LINESTYLES, MARKERS, mark_every, note_missing, thermal_off, time_axis
+from .labels import run_case_label, run_labels
+from .style import COLORS, LINESTYLES, MARKERS, add_resolution_note, mark_every, note_missing, thermal_off, time_axis
 from .timeseries import in_time_range
 from .units import TIME, quantity
 
@@ -34,7 +34,7 @@ def plot_probes(runs, probes=(), quantity_name="velocity_y", trange=None, labels
     """One panel of `quantity_name` against time: every probe of every run a curve. One run: a
     colour per probe. Several runs: a colour per run (legend from what differs between the scenes,
     or `labels`), a line style per probe; `probes` (default: all of the first run's) must exist in
-    every run."""
+    every run. The footer states the runs' resolution."""
     if quantity_name not in PROBE_QUANTITIES:
         raise PostError(f"probes.csv has no quantity '{quantity_name}' (choose from {', '.join(PROBE_QUANTITIES)})")
     if target_frame and quantity_name != "velocity_y":
@@ -79,7 +79,8 @@ def plot_probes(runs, probes=(), quantity_name="velocity_y", trange=None, labels
         ax.legend(handles, legend_labels, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
                   fontsize=8, title=legend_title)
     if title is None and single:
-        title = f"{runs[0].name}: {case_label(runs[0].scene)}".rstrip(": ")
+        title = f"{runs[0].name}: {run_case_label(runs[0])}".rstrip(": ")
     if title is not None:
         fig.suptitle(title)
+    add_resolution_note(fig, [run.scene for run in runs], labels)
     return fig

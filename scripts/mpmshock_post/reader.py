@@ -9,6 +9,14 @@
     region_stats(snap, "B800")       # the regions.csv row, recomputed from the snapshot
     run.dimension, snap.dimension    # 2 (plane strain) or 3 (a column periodic in x and z)
 
+The CSV time series convert to pandas and xarray where those are installed (they are optional:
+nothing else here imports them):
+
+    run.regions().to_pandas()        # DataFrame: columns time, region, count, density_mean, ... (SI)
+    run.regions().to_xarray()        # Dataset with dims (time, region); units in each variable's attrs
+    run.probes().to_xarray()         # dims (time, probe)
+    run.conservation().to_pandas()   # DataFrame indexed by time
+
 A run made with `paper_temperature = on` holds the paper model's temperature beside the energy
 model's; `PaperTemperatureRun(path)` reads it as a `temperature_model = paper` run reads, with the
 paper model's numbers in the temperature columns and fields:
@@ -26,6 +34,7 @@ newer simulator (restart data, grid fields) still read.
 """
 
 import csv
+import importlib
 import io
 import json
 import re
@@ -41,8 +50,10 @@ from .errors import PostError
 from .local import local_quantity
 from .regions import region_points, region_stats, target_top
 from .scene import Scene
+from .units import conservation_unit, csv_unit
 
-__all__ = ["PaperTemperatureRun", "Run", "Snapshot", "SnapshotInfo", "has_paper_temperature", "local_quantity", "region_points", "region_stats", "target_top"]
+__all__ = ["NamedSeries", "PaperTemperatureRun", "Run", "Snapshot", "SnapshotInfo", "TimeSeries",
+           "has_paper_temperature", "local_quantity", "region_points", "region_stats", "target_top", "void_count"]
 
 _SNAPSHOT_NAME = re.compile(r"^snapshot_(\d+)\.h5$")
 
@@ -90,6 +101,116 @@ def _columns(path, header, rows, text_columns=(), int_columns=()):
         except ValueError:
             raise PostError(f"{path}: column '{name}' holds a value that is not a number") from None
     return out
+
+
+def _optional_module(name, debian_package, wanted_by):
+    """pandas or xarray, imported only when a conversion asks for it; a PostError naming the
+    package to install where it is missing."""
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        raise PostError(f"{wanted_by} needs {name}, which is not installed: on Debian "
+                        f"'sudo apt-get install {debian_package}' (for /usr/bin/python3), elsewhere "
+                        f"'pip install {name}'; the reader itself needs only numpy") from None
+
+
+def _known_units(columns, unit_of):
+    """Column -> SI unit for the columns whose unit is known."""
+    units = {name: unit_of(name) for name in columns}
+    return {name: unit for name, unit in units.items() if unit is not None}
+
+
+def _set_units(dataset, units):
+    for name, unit in units.items():
+        if name in dataset.variables:
+            dataset[name].attrs["units"] = unit
+
+
+class NamedSeries(dict):
+    """regions.csv by region or probes.csv by probe: name -> {column -> array}, names in file
+    order, SI units; a dict, with conversions to pandas and xarray.
+
+    `key` is the name column ('region' or 'probe'), `units` column -> SI unit, `source` the CSV."""
+
+    def __init__(self, series, key, units, source):
+        super().__init__(series)
+        self.key, self.units, self.source = key, dict(units), Path(source)
+
+    def _quantities(self):
+        """The numeric columns, in file order (all but time and the name column)."""
+        first = next(iter(self.values()), {})
+        return [column for column in first if column not in ("time", self.key)]
+
+    def to_pandas(self):
+        """A DataFrame as the CSV is laid out: one row per name per sample, ordered by time and then
+        by name in file order, with the columns time, region (or probe) and the quantities in SI;
+        df.attrs["units"] maps column -> unit."""
+        pd = _optional_module("pandas", "python3-pandas", f"{type(self).__name__}.to_pandas()")
+        columns = ["time", self.key, *self._quantities()]
+        stacked = {column: np.concatenate([series[column] for series in self.values()]) if self else np.empty(0)
+                   for column in columns}
+        order = np.argsort(stacked["time"], kind="stable")  # stable: names stay in file order at each time
+        frame = pd.DataFrame({column: values[order] for column, values in stacked.items()})
+        frame.attrs["units"] = {column: self.units[column] for column in columns if column in self.units}
+        return frame
+
+    def to_xarray(self):
+        """A Dataset with dims (time, region) or (time, probe): one variable per quantity, its SI
+        unit in attrs["units"]. Times missing for a name (a row cut off at the end of a killed run)
+        are NaN there, and then counts are floats."""
+        xr = _optional_module("xarray", "python3-xarray", f"{type(self).__name__}.to_xarray()")
+        names = list(self)
+        times = np.unique(np.concatenate([series["time"] for series in self.values()])) if self else np.empty(0)
+        data = {column: (("time", self.key), self._on_grid(column, times)) for column in self._quantities()}
+        dataset = xr.Dataset(data, coords={"time": times, self.key: np.array(names, dtype=str)},
+                             attrs={"source": str(self.source)})
+        _set_units(dataset, self.units)
+        return dataset
+
+    def _on_grid(self, column, times):
+        """The column as a (time, name) array on the shared times."""
+        if all(len(series["time"]) == len(times) for series in self.values()):
+            # every name at every time, as the simulator writes: the column keeps its type (ints for count)
+            return np.stack([series[column] for series in self.values()], axis=1)
+        table = np.full((len(times), len(self)), np.nan)
+        for j, series in enumerate(self.values()):
+            table[np.searchsorted(times, series["time"]), j] = series[column]
+        return table
+
+
+class TimeSeries(dict):
+    """conservation.csv: column -> array, SI units (per metre of depth in 2D); a dict, with
+    conversions to pandas and xarray indexed by time. `units`: column -> SI unit."""
+
+    def __init__(self, columns, units, source):
+        super().__init__(columns)
+        self.units, self.source = dict(units), Path(source)
+
+    def to_pandas(self):
+        """A DataFrame indexed by time, one column per other column of the CSV; df.attrs["units"]
+        maps column (and the index, 'time') -> unit."""
+        pd = _optional_module("pandas", "python3-pandas", "TimeSeries.to_pandas()")
+        frame = pd.DataFrame({column: values for column, values in self.items() if column != "time"},
+                             index=pd.Index(self["time"], name="time"))
+        frame.attrs["units"] = dict(self.units)
+        return frame
+
+    def to_xarray(self):
+        """A Dataset with the dim time, one variable per other column, units in attrs["units"]."""
+        xr = _optional_module("xarray", "python3-xarray", "TimeSeries.to_xarray()")
+        dataset = xr.Dataset({column: ("time", values) for column, values in self.items() if column != "time"},
+                             coords={"time": self["time"]}, attrs={"source": str(self.source)})
+        _set_units(dataset, self.units)
+        return dataset
+
+
+def void_count(run_dir):
+    """How many voids the run laid out at t = 0: the rows of its voids.csv; None without the file."""
+    try:
+        with open(Path(run_dir) / "voids.csv") as f:
+            return max(0, sum(1 for line in f if line.strip()) - 1)
+    except OSError:
+        return None
 
 
 class Fields(Mapping):
@@ -212,37 +333,43 @@ class Run:
         """2 (plane strain) or 3 (a column periodic in x and z), from the scene."""
         return self.scene.dimension
 
-    def regions(self):
-        """Region name -> {column -> array} from regions.csv, regions in file order, SI units."""
-        path = self.path / "regions.csv"
+    def _named_series(self, path, key):
+        """NamedSeries of a CSV whose rows are (time, KEY, ...): KEY value -> columns."""
         header, rows = _read_csv(path)
-        if header[:2] != ["time", "region"]:
-            raise PostError(f"{path}: header should start with 'time,region', got '{','.join(header[:2])}'")
+        if header[:2] != ["time", key]:
+            raise PostError(f"{path}: header should start with 'time,{key}', got '{','.join(header[:2])}'")
         names = list(dict.fromkeys(row[1] for row in rows))
-        return {name: _columns(path, header, [row for row in rows if row[1] == name], text_columns=("region",),
+        series = {name: _columns(path, header, [row for row in rows if row[1] == name], text_columns=(key,),
                                  int_columns=("count",))
-                for name in names}
+                  for name in names}
+        return NamedSeries(series, key, _known_units(header, csv_unit), path)
+
+    def regions(self):
+        """NamedSeries from regions.csv: region name -> {column -> array}, regions in file order,
+        SI units; .to_pandas() and .to_xarray() convert it."""
+        return self._named_series(self.path / "regions.csv", "region")
 
     def probes(self):
-        """Probe name -> {column -> array} from probes.csv (time, count, x, y, velocity_x,
-        velocity_y, pressure, density, temperature: means over the probe's points, SI units),
-        probes in file order."""
+        """NamedSeries from probes.csv: probe name -> {column -> array} (time, count, x, y,
+        velocity_x, velocity_y, pressure, density, temperature: means over the probe's points, SI
+        units), probes in file order; .to_pandas() and .to_xarray() convert it."""
         path = self.path / "probes.csv"
         if not path.is_file() and not any(key.startswith("probe.") for key in self.scene):
             raise PostError(f"{self.path} has no probes.csv: the scene has no probe.NAME keys "
                             "(e.g. 'probe.free_surface = surface' or 'probe.p1 = point 20um 600um')")
-        header, rows = _read_csv(path)
-        if header[:2] != ["time", "probe"]:
-            raise PostError(f"{path}: header should start with 'time,probe', got '{','.join(header[:2])}'")
-        names = list(dict.fromkeys(row[1] for row in rows))
-        return {name: _columns(path, header, [row for row in rows if row[1] == name], text_columns=("probe",),
-                               int_columns=("count",))
-                for name in names}
+        return self._named_series(path, "probe")
 
     def conservation(self):
-        """Column -> array from conservation.csv (time, step, dt, mass, momenta, energies)."""
+        """TimeSeries from conservation.csv: column -> array (time, step, dt, mass, momenta,
+        energies; per metre of depth in 2D); .to_pandas() and .to_xarray() convert it."""
         path = self.path / "conservation.csv"
-        return _columns(path, *_read_csv(path), int_columns=("step",))
+        header, rows = _read_csv(path)
+        units = _known_units(header, lambda column: conservation_unit(column, self.dimension))
+        return TimeSeries(_columns(path, header, rows, int_columns=("step",)), units, path)
+
+    def void_count(self):
+        """How many voids the run laid out (rows of voids.csv); None without voids.csv."""
+        return void_count(self.path)
 
     def voids(self):
         """Column -> array from voids.csv, the initial layout: body ('flyer'/'target'), x, y,
@@ -348,11 +475,16 @@ class PaperTemperatureRun(Run):
                 out[shown] = series[stored]
         return out
 
+    @staticmethod
+    def _swapped_all(named):
+        return NamedSeries({name: PaperTemperatureRun._swapped(series) for name, series in named.items()},
+                           named.key, named.units, named.source)
+
     def regions(self):
-        return {name: self._swapped(series) for name, series in super().regions().items()}
+        return self._swapped_all(super().regions())
 
     def probes(self):
-        return {name: self._swapped(series) for name, series in super().probes().items()}
+        return self._swapped_all(super().probes())
 
     def _open_snapshot(self, path):
         return Snapshot(path, aliases={"temperature": "paper_temperature"})

@@ -9,6 +9,7 @@ import math
 
 from matplotlib.figure import Figure
 
+from .labels import resolution_parts
 from .units import TIME
 
 COLORS = ["tab:blue", "tab:red", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:gray"]
@@ -30,6 +31,57 @@ def panel_figure(n_panels, ncols, panel_size=(4.2, 3.2), legend_panel=True):
     if legend_panel:
         axes[-1].axis("off")
     return fig, axes
+
+
+FOOTER_FONTSIZE = 8
+FOOTER_LINE_IN = 0.16     # height of a footer line in inches
+_FOOTER_CHARS_PER_IN = 15  # 8 pt text: about 15 characters an inch
+
+
+def _wrap(parts, width_in, lead=""):
+    """`lead` and the comma-separated parts on as few lines as fit `width_in`; a part is never split."""
+    room = max(20, int(width_in * _FOOTER_CHARS_PER_IN))
+    lines = [lead + parts[0]]
+    for part in parts[1:]:
+        if len(lines[-1]) + 2 + len(part) > room:
+            lines[-1] += ","
+            lines.append("    " + part)
+        else:
+            lines[-1] += ", " + part
+    return lines
+
+
+def resolution_lines(scenes, names=None, width_in=8.0):
+    """The footer lines that state the resolution of the runs (cell size, points per cell, shape
+    function, from their scenes), wrapped to `width_in`: one statement when all runs share it, else
+    one per run, named by `names`."""
+    pieces = [resolution_parts(scene) if scene is not None else [] for scene in scenes]
+    pieces = [p or ["resolution not stated in the scene"] for p in pieces]
+    if all(p == pieces[0] for p in pieces):
+        return _wrap(pieces[0], width_in, "resolution: ")
+    names = list(names) if names else [f"run {i + 1}" for i in range(len(scenes))]
+    lines = ["resolution:"]
+    for name, parts in zip(names, pieces):
+        lines += _wrap(parts, width_in, f"  {name}: ")
+    return lines
+
+
+def add_footer(fig, lines):
+    """The lines at the foot of the figure, left-aligned in small grey type. A constrained-layout
+    figure shrinks its panels to make room; a figure laid out by hand must leave a bottom margin of
+    len(lines) * FOOTER_LINE_IN + 0.05 inches."""
+    height_in = fig.get_figheight()
+    footer_in = len(lines) * FOOTER_LINE_IN + 0.05
+    engine = fig.get_layout_engine()
+    if engine is not None and hasattr(engine, "set") and "rect" in engine.get():
+        engine.set(rect=(0.0, footer_in / height_in, 1.0, 1.0 - footer_in / height_in))
+    return fig.text(0.08 / fig.get_figwidth(), 0.04 / height_in, "\n".join(lines), ha="left", va="bottom",
+                    fontsize=FOOTER_FONTSIZE, color="0.35", linespacing=1.2)
+
+
+def add_resolution_note(fig, scenes, names=None):
+    """add_footer with the resolution_lines of the runs' scenes."""
+    return add_footer(fig, resolution_lines(scenes, names, fig.get_figwidth()))
 
 
 def region_styles(names, specs):

@@ -4,9 +4,9 @@
 import numpy as np
 
 from .errors import select_named
-from .labels import case_label
-from .style import (keep_min_span, mark_every, missing_reason, note_missing, panel_figure, region_styles,
-                    short_ticks, time_axis)
+from .labels import run_case_label
+from .style import (add_resolution_note, keep_min_span, mark_every, missing_reason, note_missing, panel_figure,
+                    region_styles, short_ticks, time_axis)
 from .units import TIME, quantity
 
 STATE = ("density", "pressure", "temperature", "velocity_x", "velocity_y")
@@ -27,7 +27,8 @@ def in_time_range(columns, trange):
 
 
 def plot_region_series(run, quantities, stat, regions=(), trange=None, logy=False, title=None):
-    """One panel per quantity, one curve per region, of the regions.csv column `<quantity>_<stat>`."""
+    """One panel per quantity, one curve per region, of the regions.csv column `<quantity>_<stat>`;
+    the footer states the run's resolution."""
     series = select_regions(run, regions)
     styles = region_styles(series, run.scene.regions)
     fig, axes = panel_figure(len(quantities), ncols=3 if len(quantities) > 3 else 2)
@@ -55,7 +56,8 @@ def plot_region_series(run, quantities, stat, regions=(), trange=None, logy=Fals
         time_axis(ax)
     handles, labels = axes[0].get_legend_handles_labels()
     axes[-1].legend(handles, labels, loc="center", title="measured domain")
-    fig.suptitle(title if title is not None else f"{run.name}: {case_label(run.scene)}")
+    fig.suptitle(title if title is not None else f"{run.name}: {run_case_label(run)}".rstrip(": "))
+    add_resolution_note(fig, [run.scene])
     return fig
 
 

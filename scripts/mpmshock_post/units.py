@@ -17,6 +17,22 @@ class Quantity(NamedTuple):
         unit = self.unit_tex or self.unit
         return f"{prefix}{self.symbol}" + (f" ({unit})" if unit else "")
 
+    def inverse_unit(self):
+        """The unit of 1/quantity, as an axis writes it: g/cm3 -> cm³/g, m/s -> s/m, GPa -> GPa⁻¹,
+        ns⁻² -> ns²; '' for a quantity without a unit."""
+        unit = self.unit_tex or self.unit
+        if not unit:
+            return ""
+        numerator, slash, denominator = unit.partition("/")
+        if slash:
+            return denominator if numerator == "1" else f"{denominator}/{numerator}"
+        power = _NEGATIVE_POWER.fullmatch(unit)
+        if power:
+            return f"{power.group(1)}$^{{{power.group(2)}}}$"
+        return f"{unit}$^{{-1}}$"
+
+
+_NEGATIVE_POWER = re.compile(r"(.*)\$\^\{-(\d+)\}\$")  # 'ns$^{-2}$': the unit and the power
 
 # Rotation, divergence and strain rate squared in 1/ns^2: the paper gives its Fig. 5 "in um and ns".
 QUANTITIES = {
@@ -41,6 +57,47 @@ _OTHER_UNITS = {"pressure": {"MPa": 1e-6, "Pa": 1.0}, "density": {"kg/m3": 1.0}}
 
 TIME = Quantity("$t$", "ns", 1e9)
 LENGTH_FACTOR = 1e6  # m -> um
+
+# SI units of the columns of regions.csv and probes.csv (docs/outputs.md), by the quantity a column
+# holds: regions.csv's X_mean and X_std are in the unit of X; '' for counts.
+_CSV_UNITS = {
+    "time": "s", "count": "", "x": "m", "y": "m", "z": "m",
+    "density": "kg/m3", "pressure": "Pa", "temperature": "K", "paper_temperature": "K",
+    "velocity_x": "m/s", "velocity_y": "m/s", "velocity_z": "m/s",
+    "rot2": "1/s2", "div2": "1/s2", "strain_rate2": "1/s2",
+    "macro_density": "kg/m3", "macro_pressure": "Pa", "macro_normal_stress": "Pa",
+}
+# conservation.csv: extensive sums, per metre of depth in 2D (plane strain), whole in 3D.
+_CONSERVATION_UNITS = {
+    2: {"mass": "kg/m", "momentum": "kg/s", "energy": "J/m"},
+    3: {"mass": "kg", "momentum": "kg m/s", "energy": "J"},
+}
+
+
+def csv_unit(column):
+    """SI unit of a regions.csv or probes.csv column ('pressure_std' -> 'Pa'); None if unknown
+    (a column from a newer simulator)."""
+    for suffix in ("_mean", "_std"):
+        if column.endswith(suffix) and column[:-len(suffix)] in _CSV_UNITS:
+            return _CSV_UNITS[column[:-len(suffix)]]
+    return _CSV_UNITS.get(column)
+
+
+def conservation_unit(column, dimension):
+    """SI unit of a conservation.csv column in a run of this dimension (2: per metre of depth);
+    None if unknown."""
+    extensive = _CONSERVATION_UNITS[dimension]
+    if column in ("time", "dt"):
+        return "s"
+    if column == "step":
+        return ""
+    if column == "mass":
+        return extensive["mass"]
+    if column.startswith("momentum_"):
+        return extensive["momentum"]
+    if column.endswith("_energy") or column == "work_mismatch":
+        return extensive["energy"]
+    return None
 
 # Every Unicode space (category Zs: no-break U+00A0, thin U+2009, narrow no-break U+202F, ...) as an
 # ASCII space, and the Greek small letter mu U+03BC as the micro sign U+00B5 that the unit tables
