@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages mpmshock needs, if any are missing (apt-get; uses sudo when not root).
 set -euo pipefail
-packages=(build-essential cmake libeigen3-dev libhdf5-dev hdf5-tools libopenmpi-dev openmpi-bin python3 python3-numpy
-          python3-h5py python3-matplotlib python3-pytest)
+packages=(build-essential cmake git libeigen3-dev libhdf5-dev hdf5-tools libopenmpi-dev openmpi-bin nlohmann-json3-dev
+          python3 python3-numpy
+          python3-h5py python3-matplotlib python3-pytest python3-pandas python3-xarray)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

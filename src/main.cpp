@@ -13,8 +13,10 @@
 #include "mpmshock/comm.hpp"
 
 #include "mpmshock/hdf5_io.hpp"
+#include "mpmshock/provenance.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/run_directory.hpp"
+#include "mpmshock/run_log.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/signals.hpp"
 #include "mpmshock/version.hpp"
@@ -45,7 +47,7 @@ summary.json into its output_dir.
                    --set overrides and the defaults: the scene.txt the run would write) and exit
   --keys           print the table of scene keys (unit, default, meaning) and exit
   --help           this text
-  --version        the version
+  --version        the version, the commit it was built from, the compiler and its flags
 
 On several MPI ranks (mpirun -np N mpmshock SCENE ...) each rank simulates a slab of the column
 and the outputs are the same, bit for bit, as those of one process; rank 0 writes them.
@@ -88,9 +90,7 @@ Args parse_args(int argc, char** argv) {
       if (speaks()) std::fputs(kUsage, stdout);
       finish(0);
     } else if (arg == "--version") {
-      if (speaks())
-        std::printf("mpmshock %s%s\n", mpmshock::kVersion,
-                    mpmshock::Comm::built_with_mpi() ? " (with MPI)" : "");
+      if (speaks()) std::fputs(mpmshock::version_text(mpmshock::Comm::built_with_mpi()).c_str(), stdout);
       finish(0);
     } else if (arg == "--keys") {
       if (speaks()) std::fputs(mpmshock::key_reference_markdown().c_str(), stdout);
@@ -134,12 +134,12 @@ Args parse_args(int argc, char** argv) {
 
 void report(const mpmshock::RunResult& result) {
   if (!speaks()) return;
+  using mpmshock::say;
   if (result.exit_code == mpmshock::kExitNumerical)
-    std::fprintf(stderr, "mpmshock: the run stopped: %s\nmpmshock: the last state is in the newest snapshot\n",
-                 result.failure.c_str());
+    say(stderr, "mpmshock: the run stopped: " + result.failure + "\nmpmshock: the last state is in the newest snapshot\n");
   else if (result.exit_code != mpmshock::kExitOk)
-    std::fprintf(stderr, "mpmshock: %s\n", result.failure.c_str());
-  std::fputs(mpmshock::describe_result(result).c_str(), stdout);
+    say(stderr, "mpmshock: " + result.failure + "\n");
+  say(stdout, mpmshock::describe_result(result));
 }
 
 }  // namespace
@@ -156,7 +156,7 @@ namespace {
     std::string all = message;
     for (std::size_t start = 0; start <= all.size();) {
       const std::size_t end = std::min(all.find('\n', start), all.size());
-      std::fprintf(stderr, "mpmshock: error: %s%s\n", all.substr(start, end - start).c_str(), rank.c_str());
+      mpmshock::say(stderr, "mpmshock: error: " + all.substr(start, end - start) + rank + "\n");
       start = end + 1;
     }
   }
@@ -197,6 +197,7 @@ int main(int argc, char** argv) {
   mpmshock::Comm::init(&argc, &argv);
   mpmshock::h5::prepare_library();
   const Args args = parse_args(argc, argv);
+  mpmshock::record_invocation(argc, argv, mpmshock::Comm::world().size());
   if (args.threads > 0) omp_set_num_threads(args.threads);
   mpmshock::install_stop_handlers();
   try {

@@ -12,6 +12,7 @@
 #include "mpmshock/probes.hpp"
 #include "mpmshock/regions.hpp"
 #include "mpmshock/run.hpp"
+#include "mpmshock/run_log.hpp"
 #include "mpmshock/setup.hpp"
 #include "mpmshock/snapshot.hpp"
 #include "mpmshock/time_loop.hpp"
@@ -257,7 +258,7 @@ ContinuedFiles continue_in_place(const std::string& snapshot, const Scene& own, 
       earlier.push_back(
           {p.filename().string(), h.time, h.points, h.grid, grid.nx, grid.ny, grid.y_min, grid.h, D, grid.nz});
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "mpmshock: warning: %s is left out of %s: %s\n", p.string().c_str(), kXdmfName, e.what());
+      say(stderr, "mpmshock: warning: " + p.string() + " is left out of " + kXdmfName + ": " + e.what() + "\n");
     }
   }
   return {fs::exists(dir / csvs[0]), fs::exists(dir / csvs[1]), fs::exists(dir / csvs[2])};
@@ -326,6 +327,7 @@ RunResult restart_from(const std::string& snapshot, const std::vector<std::strin
       lock = DirectoryLock(dir, snapshot + ": ");
       continued = continue_in_place(snapshot, own, scene, dir, index, t0, grid, options.force, earlier);
     }
+    open_run_log(dir, !new_dir);
     write_text(dir / "scene.txt", resolved_scene(scene));
     if (!fs::exists(dir / "voids.csv")) write_voids(dir / "voids.csv", r.run.flyer, r.run.target, D);
   });

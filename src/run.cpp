@@ -5,6 +5,7 @@
 
 #include "mpmshock/diagnostics.hpp"
 #include "mpmshock/probes.hpp"
+#include "mpmshock/run_log.hpp"
 #include "mpmshock/setup.hpp"
 #include "mpmshock/time_loop.hpp"
 
@@ -33,6 +34,7 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
   DirectoryLock lock;  // rank 0 writes the directory
   on_root(comm, [&] {
     lock = prepare_output_dir(scene, options.force);
+    open_run_log(dir, false);
     write_text(dir / "scene.txt", run.scene_text);
     write_voids(dir / "voids.csv", run.flyer, run.target, D);
   });
@@ -50,7 +52,7 @@ RunResult run_new(const Scene& scene, const RunOptions& options) {
 void print_scene_warnings(const Scene& scene, double first_step) {
   std::vector<std::string> warnings = scene_warnings(scene);
   if (const std::string probes = probes_size_warning(scene, first_step); !probes.empty()) warnings.push_back(probes);
-  for (const std::string& w : warnings) std::fprintf(stderr, "mpmshock: warning: %s\n", w.c_str());
+  for (const std::string& w : warnings) say(stderr, "mpmshock: warning: " + w + "\n");
 }
 
 RunResult run_scene(const Scene& scene, const RunOptions& options) {

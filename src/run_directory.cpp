@@ -33,7 +33,7 @@ bool is_run_output(const fs::path& p) {
   // Our temporary files are our names plus .tmp.
   if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) name.erase(name.size() - 4);
   for (const char* own : {"regions.csv", "conservation.csv", "probes.csv", "summary.json", "scene.txt", "voids.csv",
-                          kXdmfName})
+                          "log.txt", kXdmfName})
     if (name == own) return true;
   return snapshot_number(name) >= 0;
 }

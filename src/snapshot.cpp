@@ -19,6 +19,7 @@
 
 #include "mpmshock/decomposition.hpp"
 #include "mpmshock/hdf5_io.hpp"
+#include "mpmshock/provenance.hpp"
 #include "mpmshock/run_directory.hpp"
 #include "mpmshock/signals.hpp"
 #include "mpmshock/version.hpp"
@@ -476,6 +477,24 @@ Particles<D> snapshot_rows(const Particles<D>& p, const MirrorImage<D>& mirror, 
   return rows;
 }
 
+// /provenance: the build (commit, compiler, flags) and the invocation (command line, start, host,
+// directory, ranks) of the process that wrote the snapshot; nothing a restart reads.
+void write_provenance(hid_t f) {
+  Handle g(H5Gcreate2(f, "provenance", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /provenance");
+  const BuildInfo& b = build_info();
+  const Invocation& inv = invocation();
+  h5::write_string_attribute(g.get(), "version", b.version);
+  h5::write_string_attribute(g.get(), "commit", b.commit);
+  h5::write_string_attribute(g.get(), "compiler", b.compiler);
+  h5::write_string_attribute(g.get(), "flags", b.flags);
+  h5::write_string_attribute(g.get(), "build_type", b.build_type);
+  h5::write_string_attribute(g.get(), "command_line", inv.command_line);
+  h5::write_string_attribute(g.get(), "working_directory", inv.working_directory);
+  h5::write_string_attribute(g.get(), "host", inv.host);
+  h5::write_string_attribute(g.get(), "started", inv.started);
+  h5::write_int_attribute(g.get(), "ranks", inv.ranks);
+}
+
 template <int D>
 void write_header(hid_t f, const RunState& run, std::size_t rows) {
   h5::write_double_attribute(f, "time", run.clock.time);
@@ -489,6 +508,7 @@ void write_header(hid_t f, const RunState& run, std::size_t rows) {
   h5::write_string_attribute(f, "scene", run.scene_text);
   h5::write_string_attribute(f, "mpmshock_version", kVersion);
   h5::write_int_attribute(f, "format_version", 2);
+  write_provenance(f);
 }
 
 }  // namespace

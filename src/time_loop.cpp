@@ -11,6 +11,8 @@
 
 #include "mpmshock/diagnostics.hpp"
 #include "mpmshock/progress.hpp"
+#include "mpmshock/provenance.hpp"
+#include "mpmshock/run_log.hpp"
 #include "mpmshock/signals.hpp"
 #include "mpmshock/thread_tuner.hpp"
 
@@ -143,7 +145,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
                      " to restart from; if that file is not there, the run was killed while writing it: restart from " +
                      fallback;
     if (comm.root()) {
-      std::fprintf(stderr, "mpmshock: %s\n", result.failure.c_str());
+      say(stderr, "mpmshock: " + result.failure + "\n");
       result.wall_seconds = std::chrono::duration<double>(WallClock::now() - wall_start).count();
       write_summary_json(dir / "summary.json", result);
     }
@@ -164,62 +166,6 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   omp_set_num_threads(all_threads);
   if (comm.root()) write_summary_json(dir / "summary.json", result);
   return result;
-}
-
-namespace {
-
-// A JSON string: the text with its quotes, backslashes and control characters escaped.
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-// A JSON number, or null for NaN and infinities (which JSON cannot write).
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
-}  // namespace
-
-void write_summary_json(const fs::path& path, const RunResult& r) {
-  const fs::path tmp = path.string() + ".tmp";
-  File f = open_output(tmp);
-  std::fprintf(f.get(),
-               "{\n  \"exit_code\": %d,\n  \"failure\": %s,\n  \"steps\": %lld,\n  \"start_time\": %s,\n"
-               "  \"end_time\": %s,\n  \"wall_seconds\": %s,\n  \"material_points\": %zu,\n"
-               "  \"point_steps_per_second\": %s,\n  \"threads\": %d,\n  \"steps_with_fewer_threads\": %lld,\n"
-               "  \"mass_error\": %s,\n  \"momentum_error\": %s,\n  \"energy_error\": %s,\n"
-               "  \"porosity\": %s,\n  \"voids\": %zu,\n  \"symmetry\": %s,\n  \"dimension\": %d,\n  \"ranks\": %d,\n"
-               "  \"imbalance\": %s,\n  \"mpi_bytes_per_step\": %s,\n  \"mpi_messages_per_step\": %s,\n"
-               "  \"mpi_seconds\": %s,\n  \"mpi_seconds_least\": %s,\n  \"beyond_eos_fit\": %zu,\n"
-               "  \"eos_fit_J\": %s\n}\n",
-               r.exit_code, json_string(r.failure).c_str(), static_cast<long long>(r.steps),
-               json_number(r.start_time).c_str(), json_number(r.end_time).c_str(), json_number(r.wall_seconds).c_str(),
-               r.points, json_number(r.point_steps_per_second).c_str(), r.threads,
-               static_cast<long long>(r.steps_with_fewer_threads), json_number(r.mass_error).c_str(),
-               json_number(r.momentum_error).c_str(), json_number(r.energy_error).c_str(),
-               json_number(r.porosity).c_str(), r.voids, r.symmetry ? "true" : "false", r.dimension, r.ranks,
-               json_number(r.imbalance).c_str(), json_number(r.mpi_bytes_per_step).c_str(),
-               json_number(r.mpi_messages_per_step).c_str(), json_number(r.mpi_seconds).c_str(),
-               json_number(r.mpi_seconds_least).c_str(), r.beyond_eos_fit, json_number(r.beyond_eos_fit_J).c_str());
-  flush_or_throw(f.get(), path.string());
-  f.reset();
-  fs::rename(tmp, path);
 }
 
 template RunResult advance<2>(const Scene&, Simulation<2>&, RunState&, Outputs<2>&, const fs::path&,

@@ -23,7 +23,7 @@ class Progress {
   double start_, end_time_;
   bool tty_;
   bool shown_ = false;
-  WallClock::time_point wall_start_, last_;
+  WallClock::time_point wall_start_, last_, last_logged_;
 };
 
 }  // namespace mpmshock
