@@ -18,7 +18,7 @@ struct Unit {
 };
 
 // Spellings a physicist writes. Order matters only for accepted_units() listings.
-constexpr std::array<Unit, 36> kUnits{{
+constexpr std::array<Unit, 38> kUnits{{
     {"m", Dimension::length, 1, 1},
     {"cm", Dimension::length, 1, 1e2},
     {"mm", Dimension::length, 1, 1e3},
@@ -35,12 +35,14 @@ constexpr std::array<Unit, 36> kUnits{{
     {"km/s", Dimension::speed, 1e3, 1},
     {"mm/us", Dimension::speed, 1e3, 1},
     {"um/ns", Dimension::speed, 1e3, 1},
+    {"cm/us", Dimension::speed, 1e4, 1},
     {"Pa", Dimension::pressure, 1, 1},
     {"kPa", Dimension::pressure, 1e3, 1},
     {"MPa", Dimension::pressure, 1e6, 1},
     {"GPa", Dimension::pressure, 1e9, 1},
     {"bar", Dimension::pressure, 1e5, 1},
     {"kbar", Dimension::pressure, 1e8, 1},
+    {"Mbar", Dimension::pressure, 1e11, 1},
     {"kg/m3", Dimension::density, 1, 1},
     {"kg/m^3", Dimension::density, 1, 1},
     {"g/cm3", Dimension::density, 1e3, 1},

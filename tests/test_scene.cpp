@@ -48,6 +48,10 @@ int main() {
   CHECK_REL(s.material.yield_stress, 120e6, 1e-15);
   CHECK(!s.effects.plasticity);
   CHECK(s.output_dir == "runs/a b");
+  // The shock physicist's units: 0.2 Mbar = 20 GPa, 0.1 cm/us = 1 km/s.
+  const Scene shock = parse("velocity = 0.1 cm/us\nyield_stress = 0.002 Mbar\n");
+  CHECK_REL(shock.velocity, 1000.0, 1e-15);
+  CHECK_REL(shock.material.yield_stress, 200e6, 1e-15);
   CHECK(s.regions.size() == 2 && s.regions[0].name == "mid" && s.regions[0].kind == RegionSpec::Kind::band);
   CHECK_REL(s.regions[0].a, -100e-6, 1e-12);
   CHECK_REL(s.regions[0].b, 100e-6, 1e-12);

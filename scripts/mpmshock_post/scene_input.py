@@ -23,8 +23,8 @@ ROOT = Path(__file__).resolve().parents[2]  # the repository this package lives 
 _UNIT_FACTORS = {
     "m": "1", "cm": "1e-2", "mm": "1e-3", "um": "1e-6", "µm": "1e-6", "nm": "1e-9",
     "s": "1", "ms": "1e-3", "us": "1e-6", "µs": "1e-6", "ns": "1e-9", "ps": "1e-12",
-    "m/s": "1", "km/s": "1e3", "mm/us": "1e3", "um/ns": "1e3",
-    "Pa": "1", "kPa": "1e3", "MPa": "1e6", "GPa": "1e9", "bar": "1e5", "kbar": "1e8",
+    "m/s": "1", "km/s": "1e3", "mm/us": "1e3", "um/ns": "1e3", "cm/us": "1e4",
+    "Pa": "1", "kPa": "1e3", "MPa": "1e6", "GPa": "1e9", "bar": "1e5", "kbar": "1e8", "Mbar": "1e11",
     "kg/m3": "1", "kg/m^3": "1", "g/cm3": "1e3", "g/cm^3": "1e3", "g/cc": "1e3",
     "K": "1", "J/(kg K)": "1", "J/kg/K": "1", "J/(kg*K)": "1", "W/(m K)": "1", "W/m/K": "1",
     "J/kg": "1", "kJ/kg": "1e3", "MJ/kg": "1e6",
