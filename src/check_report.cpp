@@ -73,7 +73,18 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   // Every effect the run simulates, and none that it does not.
   std::vector<std::string> on;
   if (s.effects.plasticity) on.push_back(s.effects.thermal_softening ? "plasticity (with thermal softening)" : "plasticity");
-  if (s.effects.thermal) on.push_back("thermal");
+  if (s.effects.thermal) {
+    std::string thermal = s.temperature_model == TemperatureModel::paper ? "thermal (the paper's temperature model"
+                                                                         : "thermal (energy temperature model";
+    if (s.paper_temperature) thermal += ", the paper's reported beside it";
+    on.push_back(thermal + ")");
+  }
+  if (s.effects.thermal_softening) {
+    std::ostringstream melt;
+    melt << "melting (T_m0 " << s.melt_temperature << " K, Lindemann a " << s.lindemann_a << ")";
+    on.push_back(melt.str());
+  }
+  if (s.material.bound_expansion) on.push_back("bounded expansion (Rose binding curve)");
   if (s.effects.artificial_viscosity) {
     std::ostringstream av;
     av << "artificial viscosity (A1 " << s.av_linear << ", A2 " << s.av_quadratic << ")";

@@ -339,7 +339,7 @@ const std::vector<Key>& keys() {
     k.push_back(quantity("flip_fraction", D::none, closed(0.0, 1.0), "1",
                          "point velocity = f FLIP + (1 - f) PIC: 1 conserves energy to round-off but keeps point-to-point "
                          "velocity noise; below 1 damps the noise, its kinetic energy becoming heat; not energy-consistent "
-                         "in jetting porous flows (README, Method)",
+                         "in jetting porous flows (docs/method.md)",
                          FIELD(flip_fraction)));
     k.push_back(flag("skip_unreached", "on",
                      "advance material nothing has reached yet (ahead of the fastest signal) in closed form, "
@@ -352,7 +352,7 @@ const std::vector<Key>& keys() {
     k.push_back(quantity("av_linear", D::none, non_negative(), "0.2",
                          "linear artificial viscosity coefficient A1 (0.75 gives the exact elastic-plastic two-wave "
                          "state behind the shock, tests/test_two_wave.cpp; 0.2 rings it below yield, but heats the "
-                         "material near the impact plane less: README, Method)", FIELD(av_linear)));
+                         "material near the impact plane less: docs/method.md)", FIELD(av_linear)));
     k.push_back(quantity("av_quadratic", D::none, non_negative(), "2",
                          "quadratic artificial viscosity coefficient A2", FIELD(av_quadratic)));
     k.push_back(quantity("av_heat_flux", D::none, closed(0.0, 100.0), "10",
@@ -748,6 +748,17 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                              format_number(a) + " m)");
   if (s.effects.thermal_softening && !(s.effects.thermal && s.effects.plasticity))
     fail("thermal_softening", "needs thermal = on and plasticity = on (it softens the strength by temperature)");
+  if (s.effects.thermal_softening) {
+    // A starting state the material cannot have: at or above its softening or melt temperature it
+    // has no strength before anything happens.
+    const double T0 = s.material.initial_temperature;
+    if (s.softening_temperature <= T0)
+      fail("softening_temperature", "must be above initial_temperature (" + format_number(T0) +
+                                        " K): the material would start with no strength");
+    if (s.melt_temperature <= T0)
+      fail("melt_temperature", "must be above initial_temperature (" + format_number(T0) +
+                                   " K): the material would start molten");
+  }
   if (s.temperature_model == TemperatureModel::paper) {
     if (!s.effects.thermal) fail("temperature_model", "paper needs thermal = on");
     if (s.effects.heat_conduction)
