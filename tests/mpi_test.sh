@@ -173,7 +173,7 @@ echo "SIGTERM to one rank: all stopped at $(sed -n 's/.*at t = \([0-9.e+]*\) ns.
 # longer than that to write. The stop is announced, and summary.json written, before the stop
 # snapshot (written uncompressed) is begun; whatever the machine's speed, the run can be continued
 # from what the announcement names: the stop snapshot if it was finished, else the last complete one
-# (with --force). With the kill delay raised (as the README's cluster section says; 10 s here, as mpirun
+# (with --force). With the kill delay raised (as docs/cluster.md says; 10 s here, as mpirun
 # then waits that long after the ranks are done), the stop
 # snapshot itself must be there.
 printf 'porosity = 1\nwidth = 1 mm\ntarget_height = 1 mm\nflyer_height = 0.6 mm\ncell_size = 5 um\n' > big.scene
