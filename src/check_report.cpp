@@ -72,7 +72,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   if (const std::string w = probes_size_warning(s, dt0); !w.empty()) out << "warning: " << w << "\n";
   // Every effect the run simulates, and none that it does not.
   std::vector<std::string> on;
-  if (s.effects.plasticity) on.push_back(s.effects.thermal_softening ? "plasticity (with thermal softening)" : "plasticity");
+  if (s.effects.plasticity) on.push_back(s.effects.thermal_softening ? "plasticity (with Steinberg-Guinan softening)" : "plasticity");
   if (s.effects.thermal) {
     std::string thermal = s.temperature_model == TemperatureModel::paper ? "thermal (the paper's temperature model"
                                                                          : "thermal (energy temperature model";
@@ -81,7 +81,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   }
   if (s.effects.thermal_softening) {
     std::ostringstream melt;
-    melt << "melting (T_m0 " << s.melt_temperature << " K, Lindemann a " << s.lindemann_a << ")";
+    melt << "melting (T_m0 " << s.melt_temperature << " K, Lindemann a " << s.lindemann_a << ", latent heat "
+         << s.latent_heat << " J/kg)";
     on.push_back(melt.str());
   }
   if (s.material.bound_expansion) on.push_back("bounded expansion (Rose binding curve)");

@@ -24,6 +24,9 @@ ThermalSoftening softening_of(const Scene& s) {
   ThermalSoftening soft;
   soft.melt = melt_curve_of(s);
   soft.T_s = s.softening_temperature;
+  soft.pressure_hardening = 1.0 / s.pressure_hardening_scale;
+  soft.yield_max = s.yield_stress_max;
+  soft.latent_heat = s.latent_heat;
   return soft;
 }
 
@@ -50,6 +53,7 @@ Model::Model(const Scene& s)
       // that does is a blow-up.
       speed_limit(10.0 * (2.0 * s.velocity + s.material.sound_speed)) {
   if (s.effects.thermal) thermal.emplace(s.material, s.temperature_model, s.paper_temperature);
+  if (thermal && s.effects.thermal_softening) thermal->set_melting(melt_curve_of(s), s.latent_heat);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;
   volumetric_smoothing = s.volumetric_smoothing;

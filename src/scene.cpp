@@ -395,8 +395,10 @@ const std::vector<Key>& keys() {
                      "(needs thermal = on)",
                      FIELD(effects.heat_conduction)));
     k.push_back(flag("thermal_softening", "off",
-                     "shear modulus and yield stress fall linearly with temperature and vanish in the melt "
-                     "(Steinberg-Guinan; needs plasticity and thermal on)",
+                     "Steinberg-Guinan: shear modulus and yield stress scaled by 1 + P J^(1/3) / "
+                     "pressure_hardening_scale - (T - 300 K) / (softening_temperature - 300 K), the yield capped "
+                     "at yield_stress_max, both zero in the melt, which takes latent_heat (6061-T6 values; needs "
+                     "plasticity and thermal on)",
                      FIELD(effects.thermal_softening)));
     k.push_back(quantity("softening_temperature", D::temperature, Range{300.0, 1e5, true, false}, "1923 K",
                          "temperature at which linear softening would take G and sigma_Y to zero (Steinberg-Guinan "
@@ -408,6 +410,18 @@ const std::vector<Key>& keys() {
     k.push_back(quantity("lindemann_a", D::none, closed(0.0, 10.0), "1.5",
                          "volume coefficient a of the Lindemann melt curve (Steinberg-Guinan aluminium)",
                          FIELD(lindemann_a)));
+    k.push_back(quantity("pressure_hardening_scale", D::pressure, positive(), "15.337 GPa",
+                         "with thermal_softening: Steinberg-Guinan's pressure term A P eta^(-1/3), A = 1 / this "
+                         "(6061-T6: A = 6.52 /Mbar); pressure stiffens G and sigma_Y",
+                         FIELD(pressure_hardening_scale)));
+    k.push_back(quantity("yield_stress_max", D::pressure, positive(), "680 MPa",
+                         "with thermal_softening: Steinberg-Guinan's cap Y_max on the work-hardened yield stress "
+                         "(6061-T6)",
+                         FIELD(yield_stress_max)));
+    k.push_back(quantity("latent_heat", D::specific_energy, non_negative(), "397 kJ/kg",
+                         "with thermal_softening: heat of fusion taken at the melt temperature before the temperature "
+                         "rises further (aluminium, CRC Handbook)",
+                         FIELD(latent_heat)));
     k.push_back(quantity("taylor_quinney", D::none, closed(0.0, 1.0), "1",
                          "share of plastic work that becomes heat; the rest is stored as cold work",
                          FIELD(taylor_quinney)));
@@ -434,8 +448,8 @@ const std::vector<Key>& keys() {
                          "Grüneisen gamma0 at rho0; gamma rho is held constant", FIELD(material.gruneisen_gamma)));
     k.push_back(quantity("specific_heat", D::specific_heat, positive(), "880 J/(kg K)",
                          "specific heat c_v", FIELD(material.specific_heat)));
-    k.push_back(quantity("thermal_conductivity", D::conductivity, non_negative(), "237 W/(m K)",
-                         "thermal conductivity k, used with heat_conduction = on",
+    k.push_back(quantity("thermal_conductivity", D::conductivity, non_negative(), "167 W/(m K)",
+                         "thermal conductivity k, used with heat_conduction = on (6061-T6; pure aluminium: 237 W/(m K))",
                          FIELD(material.thermal_conductivity)));
     k.push_back(quantity("initial_temperature", D::temperature, positive(), "300 K",
                          "initial temperature T0", FIELD(material.initial_temperature)));
@@ -758,6 +772,9 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     if (s.melt_temperature <= T0)
       fail("melt_temperature", "must be above initial_temperature (" + format_number(T0) +
                                    " K): the material would start molten");
+    if (s.yield_stress_max < s.material.yield_stress)
+      fail("yield_stress_max", "must be at least yield_stress (" + format_number(s.material.yield_stress) +
+                                   " Pa): the cap would lie below the initial yield");
   }
   if (s.temperature_model == TemperatureModel::paper) {
     if (!s.effects.thermal) fail("temperature_model", "paper needs thermal = on");

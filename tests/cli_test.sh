@@ -29,7 +29,7 @@ expect 2 "--set #1 \(cfl=1.5\): key 'cfl'" -- range.scene --set cfl=1.5
 cp "$data/tiny_porous.scene" tiny.scene
 expect 0 "material points: [0-9]+" -- tiny.scene --check
 # --check names every effect the run simulates, and none that it does not.
-expect 0 "effects: plasticity \(with thermal softening\), thermal \(energy temperature model\), melting \(T_m0 1220 K, Lindemann a 1.5\), bounded expansion" -- tiny.scene --check --set thermal_softening=on --set bounded_expansion=on
+expect 0 "effects: plasticity \(with Steinberg-Guinan softening\), thermal \(energy temperature model\), melting \(T_m0 1220 K, Lindemann a 1.5, latent heat 397000 J/kg\), bounded expansion" -- tiny.scene --check --set thermal_softening=on --set bounded_expansion=on
 expect 0 "thermal \(energy temperature model, the paper's reported beside it\)" -- tiny.scene --check --set paper_temperature=on
 expect 0 "effects: thermal \(energy temperature model\), voids; update" -- tiny.scene --check --set plasticity=off --set artificial_viscosity=off
 [ -e tiny_porous_out ] && fail "--check wrote output"

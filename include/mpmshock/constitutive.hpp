@@ -85,7 +85,7 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
   const double rho = eos.rho0() / J_material;
 
   if constexpr (Strength::has_stress) {
-    const double plastic_work = strength.update(st.s, st.alpha, st.eps_p, rate, dt, J_material, st.E - st.E_stored);
+    const double plastic_work = strength.update(st.s, st.alpha, st.eps_p, rate, dt, J_material, st.E - st.E_stored, st.P);
     st.E_stored += (1.0 - taylor_quinney) * plastic_work / rho;
     st.plastic_heat += taylor_quinney * plastic_work / rho;
   }

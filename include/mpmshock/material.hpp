@@ -15,7 +15,7 @@ struct Material {
   double hugoniot_slope = 1.34;          // s (the paper's lambda)
   double gruneisen_gamma = 1.96;         // gamma0 at rho0; gamma*rho held constant
   double specific_heat = 880.0;          // c_v [J/(kg K)]
-  double thermal_conductivity = 237.0;   // k [W/(m K)], used only with heat conduction on
+  double thermal_conductivity = 167.0;   // k [W/(m K)] of 6061-T6, used only with heat conduction on
   double initial_temperature = 300.0;    // T0 [K]
   // Cohesive (sublimation) energy per mass: 3.39 eV per atom for aluminium (Kittel), the energy
   // of the expanded branch of the equation of state (eos.hpp) [J/kg].

@@ -7,8 +7,12 @@
 //                     250 ns, ~60 K left after release at delta 1.03) fit this model, which leaves
 //                     out the compaction heating; it is offered to compare with the paper, and does
 //                     not feed back (it cannot go with conduction or softening: scene.cpp).
+// With melting (thermal_softening = on: set_melting), the energy model's temperature stops at the
+// melt temperature T_m(J) while the latent heat L is taken up: T = T_m for a sensible excess
+// c_v (T_sensible - T_m) up to L, then T = T_m + (excess - L) / c_v.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -16,6 +20,7 @@
 #include "mpmshock/material.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
+#include "mpmshock/thermal_softening.hpp"
 
 namespace mpmshock {
 
@@ -32,9 +37,20 @@ class HugoniotTemperature {
 
   double hugoniot_temperature(double J) const;
 
-  // T = T_H(J) + (E - E_H(J)) / c_v.
+  // T = T_H(J) + (E - E_H(J)) / c_v, held at T_m(J) while the latent heat is taken up.
   double temperature(double J, double E) const {
-    return hugoniot_temperature(J) + (E - eos_.hugoniot_energy(J)) / cv_;
+    const double T = hugoniot_temperature(J) + (E - eos_.hugoniot_energy(J)) / cv_;
+    if (latent_heat_ > 0.0) {
+      const double T_m = melt_.at(J);
+      if (T > T_m) return T_m + std::max(0.0, (T - T_m) * cv_ - latent_heat_) / cv_;
+    }
+    return T;
+  }
+
+  // Melting: the melt curve and the latent heat L [J/kg] (0: none, the default).
+  void set_melting(const MeltCurve& melt, double latent_heat) {
+    melt_ = melt;
+    latent_heat_ = latent_heat;
   }
 
   // T = T_H(J) + W_p / c_v (the paper model), W_p the plastic heat [J/kg].
@@ -64,6 +80,8 @@ class HugoniotTemperature {
   MieGruneisen eos_;
   double cv_ = 880.0, T0_ = 300.0, gamma0_ = 1.96;
   double J_min_ = 0.0, dJ_ = 0.0;
+  MeltCurve melt_;
+  double latent_heat_ = 0.0;
   std::vector<double> table_;  // table_[k] = T_H(1 - k dJ)
 };
 

@@ -4,8 +4,8 @@
 //   NoStrength      hydrodynamics: s = 0, no deviatoric fields are stored
 //   VonMises<false> von Mises plasticity with linear isotropic hardening (hardening_beta = 1)
 //   VonMises<true>  mixed isotropic/kinematic hardening (hardening_beta < 1): a back stress alpha
-//   VonMises<B, true>  the same with thermal softening: G and sigma_Y scaled by f(T, J), zero in
-//                   the melt (thermal_softening.hpp)
+//   VonMises<B, true>  the same with Steinberg-Guinan softening: G and sigma_Y scaled by
+//                   f(P, T, J), zero in the melt, sigma_Y capped at Y_max (thermal_softening.hpp)
 //
 // Every law returns the step's plastic work per unit volume, sigma_Y d eps_p, of which the share
 // taylor_quinney becomes heat and the rest is stored as cold work (constitutive.hpp).
@@ -13,6 +13,7 @@
 // The stress rate is the Jaumann rate (objective); the plastic correction is a radial return.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "mpmshock/material.hpp"
@@ -47,12 +48,23 @@ struct VonMises {
         initial_yield(mat.yield_stress) {}
   VonMises(const Material& mat, const ThermalSoftening& soft) : VonMises(mat) {
     thermal = HugoniotTemperature(mat);
+    thermal.set_melting(soft.melt, soft.latent_heat);
     softening = soft;
   }
 
   // The yield radius only ever grows by beta H d eps_p, so it is a function of the effective
-  // plastic strain and need not be stored.
-  double yield_radius(double eps_p) const { return initial_yield + beta * plastic_modulus * eps_p; }
+  // plastic strain and need not be stored. With Softening it stops at Steinberg-Guinan's Y_max.
+  double yield_radius(double eps_p) const {
+    const double radius = initial_yield + beta * plastic_modulus * eps_p;
+    if constexpr (Softening) return std::min(radius, softening.yield_max);
+    return radius;
+  }
+  // The hardening modulus at eps_p: none once the yield radius has reached Y_max.
+  double hardening_at(double eps_p) const {
+    if constexpr (Softening)
+      if (initial_yield + beta * plastic_modulus * eps_p >= softening.yield_max) return 0.0;
+    return plastic_modulus;
+  }
 
   // Radial return of a trial deviatoric stress onto sqrt(3/2)||s - alpha|| = sigma_Y(eps_p).
   // Updates s, alpha and eps_p in place; returns the effective plastic strain increment
@@ -67,7 +79,8 @@ struct VonMises {
     const double q_trial = equivalent_stress(xi);
     const double f = q_trial - k * yield_radius(eps_p);
     if (f <= 0.0) return 0.0;
-    const double G = k * shear_modulus, H = k * plastic_modulus;
+    // A step that crosses Y_max hardens at H up to its end; the next steps do not harden.
+    const double G = k * shear_modulus, H = k * hardening_at(eps_p);
     const double deps_p = f / (3.0 * G + H);
     // n = xi / ||xi||, ||xi|| = sqrt(2/3) q_trial; plastic strain increment d e_p = sqrt(3/2) deps_p n.
     const double to_unit = 1.0 / (std::sqrt(2.0 / 3.0) * q_trial);
@@ -84,13 +97,14 @@ struct VonMises {
   // elastic increment added, s_trial = R s R^T + 2 G D' dt; the back stress rotates too; then the
   // radial return.
   // Returns the plastic work per unit volume, sigma_Y d eps_p. J and the thermal part of the
-  // specific internal energy give the temperature, with Softening only.
+  // specific internal energy give the temperature, and P the pressure of the Steinberg-Guinan
+  // factor, with Softening only.
   template <int D>
   double update(Deviator<D>& s, Deviator<D>& alpha, double& eps_p, const StrainRate<D>& rate, double dt,
-                [[maybe_unused]] double J, [[maybe_unused]] double E_thermal) const {
+                [[maybe_unused]] double J, [[maybe_unused]] double E_thermal, [[maybe_unused]] double P) const {
     double k = 1.0;
     if constexpr (Softening) {
-      k = softening.factor(thermal.temperature(J, E_thermal), J);
+      k = softening.factor(P, thermal.temperature(J, E_thermal), J);
       if (k == 0.0) {  // molten: a fluid
         s = {};
         alpha = {};
