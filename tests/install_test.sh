@@ -26,6 +26,16 @@ env -u PYTHONPATH "$prefix/bin/mpmshock-plot" timeseries run --output plot.png >
 [ -s plot.png ] || fail "mpmshock-plot wrote no plot.png"
 env -u PYTHONPATH PYTHONPATH="$prefix/lib/mpmshock/python" /usr/bin/python3 -c \
   "import mpmshock_post, sys; sys.exit(0 if mpmshock_post.__version__ else 1)" || fail "import mpmshock_post"
+# The installed mpmshock-converge resolves scenes through the installed simulator (no $MPMSHOCK, no
+# checkout): two levels of a tiny study.
+env -u PYTHONPATH -u MPMSHOCK PATH=/usr/bin:/bin "$prefix/bin/mpmshock-converge" "$prefix/share/mpmshock/configs/default.scene" \
+  --out study --values 50um,25um --set "end_time=5 ns" >converge.out 2>&1 || fail "installed mpmshock-converge: $(tail -5 converge.out)"
+[ -s study/convergence.csv ] || fail "mpmshock-converge wrote no convergence.csv"
+# The package is the reader, units, theory, statistics, plots and the convergence tool; the studies
+# stay in the checkout (studies/).
+if ls "$prefix/lib/mpmshock/python/mpmshock_post" | grep -E "^(paper|accuracy|dimension|scene_input)"; then
+  fail "the installed package holds a study module"
+fi
 # A project outside the tree: find_package(mpmshock) and mpmshock::core.
 cmake -S "$src/tests/install_consumer" -B consumer -DCMAKE_PREFIX_PATH="$prefix" >consumer.log 2>&1 \
   || fail "configuring the consumer: $(tail -20 consumer.log)"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The quick paper campaign (README, Reproducing the paper): every case in both temperature models,
+# The quick paper campaign (docs/reproducing-the-paper.md): every case in both temperature models,
 # then every figure and a comparison row for every claim, none of them "not run". About 5-6 minutes
 # and 3 GB here, so it is registered only with -DMPMSHOCK_PAPER_TEST=ON (ctest -L paper).
 # Usage: paper_quick_test.sh MPMSHOCK OUT_DIR
@@ -7,7 +7,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 export MPMSHOCK="$1" OMP_WAIT_POLICY=PASSIVE
 out="$2"
-"$root/scripts/reproduce-paper" --quick --out "$out"
+"$root/studies/paper/reproduce-paper" --quick --out "$out"
 for n in 01 02 03 04 05 06 07 08 09 10 11 12 13; do
   [ -s "$out/fig$n.png" ] || { echo "FAILED: $out/fig$n.png was not made"; exit 1; }
 done

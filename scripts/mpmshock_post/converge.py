@@ -59,8 +59,8 @@ import numpy as np
 from .errors import PostError, argument_type
 from .reader import Run
 from .scene import Scene
-from .scene_input import key_defaults, mpmshock_binary, parse_value, requested_scene, scene_differences
-from .units import parse_time
+from .resolve import mpmshock_binary, resolved_scene, scene_differences
+from .units import parse_quantity, parse_time
 
 CSV_COLUMNS = ("level", "cell_size", "points", "steps", "wall_seconds", "region", "quantity", "value",
                "extrapolated", "error_estimate", "observed_order")
@@ -96,33 +96,46 @@ def _format(value):
     return str(int(value)) if float(value).is_integer() and abs(value) < 1e15 else repr(float(value))
 
 
-def _base_value(refine, key, requested, defaults):
-    value = requested.get(key, defaults.get(key))
+def _base_value(refine, key, base):
+    if key not in base:
+        raise UsageError(f"--refine {refine}: {key} is not a key of the resolved scene (mpmshock --keys lists them)")
+    value = base[key]
     if not isinstance(value, float):
-        # cfl = auto and the like: there is no number to halve, so the levels must be named.
-        whose = "the scene's" if key in requested else "the default"
-        raise UsageError(f"--refine {refine}: {whose} {key} is '{value}', not a number to refine from; "
+        # A word where a number was expected: there is no number to halve, so the levels must be named.
+        raise UsageError(f"--refine {refine}: the scene's {key} is '{value}', not a number to refine from; "
                          f"give the levels with --values V1,V2,... (coarsest first"
                          f"{', the scale factors of av_linear and av_quadratic' if refine == 'av' else ''})")
     return value
 
 
-def plan_levels(refine, values, count, requested, defaults):
-    """The levels of a study, coarsest first."""
+def plan_levels(refine, values, count, resolve):
+    """The levels of a study, coarsest first. `resolve(overrides)` is the resolved scene of the
+    study's scene with these extra --set overrides (resolved_scene): the simulator converts the
+    values given with units (--values 20um,10um) and names the base value of the refined key."""
+    base = resolve([])
     if refine == "av":
-        a1, a2 = (_base_value(refine, k, requested, defaults) for k in ("av_linear", "av_quadratic"))
-        scales = values or [0.5 ** k for k in range(count)]
+        a1, a2 = (_base_value(refine, k, base) for k in ("av_linear", "av_quadratic"))
+        try:
+            scales = [float(v) for v in values] if values else [0.5 ** k for k in range(count)]
+        except ValueError:
+            raise UsageError(f"--refine av --values {','.join(values)}: give plain scale factors") from None
         return [Level(k, s, s, [f"av_linear={_format(a1 * s)}", f"av_quadratic={_format(a2 * s)}"])
                 for k, s in enumerate(scales)]
+    _base_value(refine, refine, base)   # the key exists and holds a number
     if values is None:
-        base = _base_value(refine, refine, requested, defaults)
         step = {"cell_size": 0.5, "cfl": 0.5, "particles_per_cell": 2.0}.get(refine)
         if step is None:
             raise UsageError(f"--refine {refine}: give its levels with --values (known refinements: "
                              "cell_size, particles_per_cell, cfl, av)")
-        values = [base * step ** k for k in range(count)]
+        texts = [_format(base[refine] * step ** k) for k in range(count)]
+    else:
+        texts = list(values)
     measure = (lambda v: 1.0 / v) if refine == "particles_per_cell" else (lambda v: v)
-    return [Level(k, v, measure(v), [f"{refine}={_format(v)}"]) for k, v in enumerate(values)]
+    levels = []
+    for k, text in enumerate(texts):
+        value = _base_value(refine, refine, resolve([f"{refine}={text}"]))
+        levels.append(Level(k, value, measure(value), [f"{refine}={_format(value)}"]))
+    return levels
 
 
 def refined_keys(refine):
@@ -135,7 +148,7 @@ def run_directory(out, level, seed, seeds):
     return out / (f"level_{level.index}_seed_{seed}" if seeds > 1 else f"level_{level.index}")
 
 
-def reusable(run_dir, requested, defaults):
+def reusable(run_dir, requested):
     """True when run_dir holds a finished run (exit_code 0) of exactly the requested scene."""
     try:
         summary = json.loads((run_dir / "summary.json").read_text())
@@ -143,7 +156,7 @@ def reusable(run_dir, requested, defaults):
     except (OSError, ValueError, PostError):
         return False
     return (summary.get("exit_code") == 0 and (run_dir / "regions.csv").is_file()
-            and not scene_differences(resolved, requested, defaults))
+            and not scene_differences(resolved, requested))
 
 
 def simulate(binary, scene, overrides, run_dir):
@@ -163,17 +176,17 @@ def simulate(binary, scene, overrides, run_dir):
     return time.monotonic() - started
 
 
-def run_levels(levels, args, binary, defaults, log=sys.stderr):
+def run_levels(levels, args, binary, log=sys.stderr):
     """Runs (or reuses) every level and seed, one run at a time, with one line each on log."""
-    first_seed = int(requested_scene(args.scene, args.set).get("seed", defaults.get("seed", 1)))
+    first_seed = int(resolved_scene(args.scene, args.set, binary)["seed"])
     label = args.refine
     for level in levels:
         for seed in range(first_seed, first_seed + args.seeds):
             overrides = [*args.set, *level.overrides] + ([f"seed={seed}"] if args.seeds > 1 else [])
             run_dir = run_directory(args.out, level, seed, args.seeds)
-            requested = requested_scene(args.scene, overrides)
+            requested = resolved_scene(args.scene, [*overrides, f"output_dir={run_dir}"], binary)
             seed_text = f" seed {seed}" if args.seeds > 1 else ""
-            if reusable(run_dir, requested, defaults):
+            if reusable(run_dir, requested):
                 wall = json.loads((run_dir / "summary.json").read_text()).get("wall_seconds", float("nan"))
                 print(f"mpmshock-converge: level {level.index} {label} = {level.value:g}{seed_text}: "
                       f"reused {run_dir} (ran in {wall:.2f} s)", file=log, flush=True)
@@ -467,16 +480,16 @@ def plot_cost(path, results, costs):
 def _exact(text):
     target, sep, value = text.partition("=")
     region, colon, quantity = target.partition(":")
-    number = parse_value(value) if sep else None
-    if not (sep and colon and region and quantity and isinstance(number, float)):
+    if not (sep and colon and region and quantity):
         raise PostError(f"--exact '{text}': expected region:quantity=value, e.g. B400:arrival_time=49.9ns")
-    return (region.strip(), quantity.strip()), number
+    return (region.strip(), quantity.strip()), parse_quantity(value)
 
 
 def _values(text):
-    values = [parse_value(v) for v in text.split(",") if v.strip()]
-    if len(values) < 1 or not all(isinstance(v, float) for v in values):
-        raise PostError(f"--values '{text}': expected comma-separated numbers (units allowed: 20um,10um)")
+    """The values as written; the simulator converts them (plan_levels)."""
+    values = [v.strip() for v in text.split(",")]
+    if not values or not all(values):
+        raise PostError(f"--values '{text}': expected comma-separated values (units allowed: 20um,10um)")
     return values
 
 
@@ -552,13 +565,13 @@ def main(argv=None):
         binary = mpmshock_binary()
         if not binary.is_file():
             raise PostError(f"no mpmshock binary at {binary} (build it, or set $MPMSHOCK)")
-        defaults = key_defaults(binary)
-        levels = plan_levels(args.refine, args.values, args.levels, requested_scene(args.scene, args.set), defaults)
+        levels = plan_levels(args.refine, args.values, args.levels,
+                             lambda extra: resolved_scene(args.scene, [*args.set, *extra], binary))
         try:
             args.out.mkdir(parents=True, exist_ok=True)
         except OSError as e:
             raise PostError(f"--out {args.out}: cannot make the directory: {e.strerror}") from None
-        run_levels(levels, args, binary, defaults)
+        run_levels(levels, args, binary)
         results = collect(levels, args.regions, args.window, args.at)
         exact = dict(args.exact)
         unknown = [f"{r}:{q}" for r, q in exact if not any(x.region == r and x.quantity == q for x in results)]

@@ -31,7 +31,7 @@ from functools import lru_cache
 import math
 
 from .errors import PostError
-from .scene_input import key_defaults
+from .resolve import default_scene
 
 
 @dataclass(frozen=True)
@@ -48,7 +48,7 @@ class Material:
     @classmethod
     def from_scene(cls, scene):
         """From a mapping of scene keys to SI floats: a run's resolved scene (reader.Run(...).scene)
-        or key_defaults()."""
+        or resolve.default_scene()."""
         try:
             return cls(**{name: float(scene[name]) for name in cls.__dataclass_fields__})
         except KeyError as e:
@@ -61,8 +61,8 @@ class Material:
 
 
 def default_material(binary=None):
-    """The simulator's default material, read from `mpmshock --keys` ($MPMSHOCK or build/src/mpmshock)."""
-    return Material.from_scene(key_defaults(binary))
+    """The simulator's default material: its resolved empty scene ($MPMSHOCK or mpmshock on PATH)."""
+    return Material.from_scene(default_scene(binary))
 
 
 # --- the equation of state (include/mpmshock/eos.hpp) -----------------------------------------------

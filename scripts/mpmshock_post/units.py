@@ -153,3 +153,24 @@ def parse_length(text):
         return float(Decimal(match.group(1)) * Decimal(_LENGTH_SUFFIXES[match.group(2) or "m"]))
     except InvalidOperation:
         raise PostError(f"length '{text}': '{match.group(1)}' is not a number") from None
+
+
+# The units a known answer is written in on a command line (mpmshock-converge --exact): the display
+# units above and SI. Scene values are the simulator's to convert (mpmshock --resolve), not these.
+_QUANTITY_SUFFIXES = {**_TIME_SUFFIXES, **_LENGTH_SUFFIXES, "m/s": "1", "km/s": "1e3", "Pa": "1", "MPa": "1e6",
+                      "GPa": "1e9", "kg/m3": "1", "g/cm3": "1e3", "K": "1", "J/kg": "1", "kJ/g": "1e6"}
+_QUANTITY = re.compile(r"^\s*([-+0-9.eE]+)\s*(\S*)\s*$", re.ASCII)
+
+
+def parse_quantity(text):
+    """SI float from '49.9ns', '4.7 GPa', '2.75 g/cm3' or a bare SI number; the units are those
+    the package displays (ns, um, m/s, GPa, MPa, g/cm3, K, kJ/g, ...) and SI."""
+    match = _QUANTITY.match(plain_spacing(text))
+    unit = match.group(2) if match else None
+    if not match or (unit and unit not in _QUANTITY_SUFFIXES):
+        known = ", ".join(_QUANTITY_SUFFIXES)
+        raise PostError(f"'{text}': give a number in SI or with one of the units {known}")
+    try:
+        return float(Decimal(match.group(1)) * Decimal(_QUANTITY_SUFFIXES[unit] if unit else "1"))
+    except InvalidOperation:
+        raise PostError(f"'{text}': '{match.group(1)}' is not a number") from None

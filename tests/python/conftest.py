@@ -1,7 +1,9 @@
 """Shared set-up of the Python tests: the mpmshock binary and the runs they examine.
 
-The binary is --mpmshock PATH, else $MPMSHOCK, else build/src/mpmshock. The package mpmshock_post
-is found through pytest.ini's pythonpath (scripts/), as `pip install -e scripts` would install it.
+The binary is --mpmshock PATH (CTest passes the one it built), else $MPMSHOCK, else build/src/mpmshock
+of the checkout. The fixture also exports it as $MPMSHOCK, which the package's tools read
+(mpmshock_post.resolve). The package mpmshock_post is found through pytest.ini's pythonpath
+(scripts/), as `pip install -e scripts` would install it; the studies through studies/.
 """
 
 import argparse
@@ -13,6 +15,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 SCRIPTS = ROOT / "scripts"
+STUDIES = ROOT / "studies"
 
 
 def pytest_addoption(parser):
@@ -25,6 +28,7 @@ def mpmshock(request):
     binary = request.config.getoption("--mpmshock") or os.environ.get("MPMSHOCK") or ROOT / "build/src/mpmshock"
     if not Path(binary).is_file():
         pytest.fail(f"no mpmshock binary at {binary}: build it (scripts/build.sh) or pass --mpmshock PATH")
+    os.environ["MPMSHOCK"] = str(binary)
     return str(binary)
 
 

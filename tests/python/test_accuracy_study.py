@@ -1,12 +1,14 @@
-"""scripts/accuracy-study: its helpers, and a smoke test of the quick solid part end to end.
+"""studies/accuracy/accuracy-study: its helpers (the package `accuracy` under studies/), its report
+template, and a smoke test of the quick solid part end to end.
 
     /usr/bin/python3 -m pytest tests/python/test_accuracy_study.py [--mpmshock BUILD/src/mpmshock]
 
-The smoke test runs `accuracy-study --quick --only solid` into a temporary directory: solid plates at
-1000 m/s, bspline2 and bilinear, cell sizes 20, 10, 5 um (six runs, about 10 s on 2 cores), then
-once more to check that every run is reused. It checks that the document and its figures are
-written with their tables, and one reference number: the bspline2 plateau pressure at 5 um lies
-within 1 % of the exact Rankine-Hugoniot 18.063 GPa (measured 2026-11: +0.03 %).
+The smoke test runs `accuracy-study --quick --only solid` into a temporary directory, with the
+binary under test as $MPMSHOCK: solid plates at 1000 m/s, bspline2 and bilinear, cell sizes 20, 10,
+5 um (six runs, about 10 s on 2 cores), then once more to check that every run is reused. It checks
+that the document and its figures are written with their tables, and one reference number: the
+bspline2 plateau pressure at 5 um lies within 1 % of the exact Rankine-Hugoniot 18.063 GPa
+(measured 2026-11: +0.03 %).
 """
 
 import csv
@@ -17,11 +19,13 @@ import sys
 
 import pytest
 
-from conftest import SCRIPTS
-from mpmshock_post import accuracy_study, hugoniot
+from accuracy import measure, plan, report
+from conftest import STUDIES
+from mpmshock_post import hugoniot
 from mpmshock_post.converge import Estimate, Result
+from mpmshock_post.errors import PostError
 
-STUDY = SCRIPTS / "accuracy-study"
+STUDY = STUDIES / "accuracy/accuracy-study"
 PNG = b"\x89PNG\r\n\x1a\n"
 
 
@@ -31,37 +35,50 @@ def test_needed_resolution_measured_and_extrapolated():
     h = [20e-6, 10e-6, 5e-6]
     result = Result("plateau", "pressure_mean", [10.4, 10.1, 10.025],
                     [0.0, 0.0, 0.0], Estimate(10.0, 2.0, [0.4, 0.1, 0.025]))
-    assert accuracy_study.needed_resolution(result, h, 0.05, True)[0] == 20e-6       # 4 % at 20 um
-    cell, error, how = accuracy_study.needed_resolution(result, h, 0.01, True)
+    assert measure.needed_resolution(result, h, 0.05, True)[0] == 20e-6       # 4 % at 20 um
+    cell, error, how = measure.needed_resolution(result, h, 0.01, True)
     assert cell == 10e-6 and error == pytest.approx(0.01) and how == "measured"
-    cell, error, how = accuracy_study.needed_resolution(result, h, 0.0025 / 4, True)  # 4x finer than the finest
+    cell, error, how = measure.needed_resolution(result, h, 0.0025 / 4, True)  # 4x finer than the finest
     assert cell == pytest.approx(2.5e-6) and "extrapolated (order 2.00)" in how
     fallback = Result("plateau", "temperature_mean", [500.0, 520.0, 510.0], [0, 0, 0],
                       Estimate(510.0, math.nan, [30.0, 30.0, 20.0], "fallback: not monotone"))
-    cell, _, how = accuracy_study.needed_resolution(fallback, h, 10.0, False)
+    cell, _, how = measure.needed_resolution(fallback, h, 10.0, False)
     assert cell == pytest.approx(2.5e-6) and "fallback order 1" in how
 
 
 def test_nice_cell_divides_the_width():
-    assert accuracy_study.nice_cell(4.1e-6, 2e-3) == pytest.approx(4e-6)
-    assert accuracy_study.nice_cell(3.5e-6, 2e-3) == pytest.approx(2.5e-6)
-    assert accuracy_study.nice_cell(20e-6, 2e-3) == pytest.approx(20e-6)
+    assert measure.nice_cell(4.1e-6, 2e-3) == pytest.approx(4e-6)
+    assert measure.nice_cell(3.5e-6, 2e-3) == pytest.approx(2.5e-6)
+    assert measure.nice_cell(20e-6, 2e-3) == pytest.approx(20e-6)
 
 
 def test_exact_order():
-    assert accuracy_study.exact_order([4.0, 2.0, 1.0], [4.0, 2.0, 1.0]) == pytest.approx(1.0)
-    assert accuracy_study.exact_order([4.0, 2.0, -1.0], [4.0, 2.0, 1.0]) is None
+    assert measure.exact_order([4.0, 2.0, 1.0], [4.0, 2.0, 1.0]) == pytest.approx(1.0)
+    assert measure.exact_order([4.0, 2.0, -1.0], [4.0, 2.0, 1.0]) is None
 
 
 def test_plateau_window_ends_before_the_release():
     material = hugoniot.Material(2700.0, 5350.0, 1.34, 1.96, 880.0, 300.0)
     state = hugoniot.solid_shock(2000.0, material)
-    t0, t1, t_release = accuracy_study.plateau_window(state, material, 1e-3, 400e-6, 80e-6, 200e-9)
+    t0, t1, t_release = plan.plateau_window(state, material, 1e-3, 400e-6, 80e-6, 200e-9)
     assert t0 == pytest.approx(80e-9)                  # (400 + 80) um at 6030 m/s, rounded up
     assert t1 < t_release < 200e-9                     # the release would come before 200 ns
     assert t1 == round(t1 / 1e-9) * 1e-9
-    with pytest.raises(accuracy_study.PostError, match="too short"):
-        accuracy_study.plateau_window(state, material, 0.5e-3, 400e-6, 80e-6, 200e-9)
+    with pytest.raises(PostError, match="too short"):
+        plan.plateau_window(state, material, 0.5e-3, 400e-6, 80e-6, 200e-9)
+
+
+def test_template_fills_blocks_and_names_the_parts():
+    prose = report.Prose()
+    layouts = prose("layouts", count=2, plural="s", seeds="1, 2")
+    assert layouts == "2 void layouts (seeds 1, 2)"
+    choice = prose("choices.sensitivity", delta="1.1", h="5 um", seeds=2)
+    assert "\\" not in choice and "\n" not in choice and "the finest h at which 9 settings x the layouts" in choice
+    assert [report.anchor(prose.heading(part)) for part in plan.PARTS] == [
+        "1-solid-plates-against-the-exact-rankine-hugoniot-state", "2-porous-bodies-convergence-under-void-resolution",
+        "3-sensitivity-to-the-numerical-parameters", "4-the-papers-base-case-what-resolution-at-what-cost"]
+    with pytest.raises(KeyError, match="no value for 'seeds'"):
+        prose("layouts", count=2, plural="s")
 
 
 # --- the quick solid study ----------------------------------------------------------------------------

@@ -34,8 +34,8 @@ from conftest import SCRIPTS
 from mpmshock_post import converge, hugoniot
 from mpmshock_post.converge import Estimate, Level, Result, half_rise_time, plan_levels, richardson
 from mpmshock_post.scene import Scene, parse_region
-from mpmshock_post.scene_input import key_defaults, parse_value, requested_scene, scene_differences
-from mpmshock_post.units import parse_length, parse_time
+from mpmshock_post.resolve import resolved_scene, scene_differences
+from mpmshock_post.units import parse_length, parse_quantity, parse_time
 
 CONVERGE = SCRIPTS / "mpmshock-converge"
 HEADER = ["level", "cell_size", "points", "steps", "wall_seconds", "region", "quantity", "value",
@@ -159,26 +159,51 @@ def test_seed_scatter_combines_in_quadrature():
 
 # --- levels, arrival times, scene matching ----------------------------------------------------------
 
+def fake_resolve(base):
+    """A stand-in for the simulator's resolution: the base scene with plain-number overrides."""
+    def resolve(extra):
+        scene = dict(base)
+        for override in extra:
+            key, _, value = override.partition("=")
+            try:
+                scene[key] = float(value)
+            except ValueError:
+                scene[key] = value
+        return scene
+    return resolve
+
+
 def test_plan_levels():
-    defaults = {"cell_size": 20e-6, "particles_per_cell": 2.0, "cfl": 0.3, "av_linear": 0.2, "av_quadratic": 2.0}
-    cells = plan_levels("cell_size", None, 3, {"cell_size": 40e-6}, defaults)
+    base = {"cell_size": 40e-6, "particles_per_cell": 2.0, "cfl": 0.3, "av_linear": 0.2, "av_quadratic": 2.0,
+            "sample_interval": 1e-8, "update_scheme": "musl"}
+    cells = plan_levels("cell_size", None, 3, fake_resolve(base))
     assert [lv.value for lv in cells] == [40e-6, 20e-6, 10e-6]
     assert cells[2].overrides == ["cell_size=1e-05"]
-    ppc = plan_levels("particles_per_cell", None, 3, {}, defaults)
+    ppc = plan_levels("particles_per_cell", None, 3, fake_resolve(base))
     assert [lv.overrides for lv in ppc] == [["particles_per_cell=2"], ["particles_per_cell=4"], ["particles_per_cell=8"]]
     assert [lv.measure for lv in ppc] == [0.5, 0.25, 0.125]
-    assert [lv.value for lv in plan_levels("cfl", None, 2, {}, defaults)] == [0.3, 0.15]
-    av = plan_levels("av", None, 3, {}, defaults)
+    assert [lv.value for lv in plan_levels("cfl", None, 2, fake_resolve(base))] == [0.3, 0.15]
+    av = plan_levels("av", None, 3, fake_resolve(base))
     assert av[2].overrides == ["av_linear=0.05", "av_quadratic=0.5"] and av[2].measure == 0.25
-    explicit = plan_levels("cell_size", [30e-6, 15e-6], 2, {}, defaults)
+    explicit = plan_levels("cell_size", ["3e-05", "1.5e-05"], 2, fake_resolve(base))
     assert [lv.measure for lv in explicit] == [30e-6, 15e-6]
     with pytest.raises(converge.PostError, match="--values"):
-        plan_levels("sample_interval", None, 3, {}, {"sample_interval": 1e-8})
-    # cfl = auto (the simulator's default) has no number to halve: the levels must be named.
-    for requested in ({"cfl": "auto"}, {}):
-        with pytest.raises(converge.UsageError, match=r"cfl is 'auto'.*--values"):
-            plan_levels("cfl", None, 3, requested, {"cfl": "auto"})
-    assert [lv.value for lv in plan_levels("cfl", [0.3, 0.15], 2, {"cfl": "auto"}, {"cfl": "auto"})] == [0.3, 0.15]
+        plan_levels("sample_interval", None, 3, fake_resolve(base))
+    # A word has no number to halve, and a key the scene lacks is named as such.
+    with pytest.raises(converge.UsageError, match=r"update_scheme is 'musl'.*--values"):
+        plan_levels("update_scheme", None, 3, fake_resolve(base))
+    with pytest.raises(converge.UsageError, match="not a key"):
+        plan_levels("no_such_key", None, 3, fake_resolve(base))
+
+
+def test_values_with_units_are_the_simulators(study):
+    """--values 20um,10um: the simulator converts the values (mpmshock --resolve), not the tool."""
+    resolve = lambda extra: resolved_scene(study["scene"], extra, study["binary"])   # noqa: E731
+    levels = plan_levels("cell_size", ["20um", "10 um"], 2, resolve)
+    assert [lv.value for lv in levels] == [20e-6, 10e-6]
+    assert [lv.overrides for lv in levels] == [["cell_size=2e-05"], ["cell_size=1e-05"]]
+    with pytest.raises(converge.PostError, match="furlongs|unit"):
+        plan_levels("cell_size", ["5 furlongs"], 1, resolve)
 
 
 def test_half_rise_time():
@@ -189,11 +214,14 @@ def test_half_rise_time():
     assert math.isnan(half_rise_time(t, p + 10.0, 10.0))   # already there at the start
 
 
-def test_parse_value_units():
-    assert parse_value("50 um") == 50e-6 and parse_value("50um") == 50e-6
-    assert parse_value("1.2 km/s") == 1200.0 and parse_value("3 g/cc") == 3000.0
-    assert parse_value("60.8ns") == pytest.approx(60.8e-9, rel=1e-15)
-    assert parse_value("on") == "on" and parse_value("5 furlongs") == "5 furlongs"
+def test_parse_quantity_units():
+    """--exact values: SI or a display unit of the package."""
+    assert parse_quantity("49.9ns") == pytest.approx(49.9e-9, rel=1e-15) and parse_quantity("1.2e-6") == 1.2e-6
+    assert parse_quantity("18.06 GPa") == pytest.approx(18.06e9) and parse_quantity("3.174 g/cm3") == pytest.approx(3174.0)
+    assert parse_quantity("487.7 K") == 487.7 and parse_quantity("1.2 km/s") == 1200.0
+    for bad in ("on", "5 furlongs", "GPa"):
+        with pytest.raises(converge.PostError):
+            parse_quantity(bad)
 
 
 MICRO_SIGN, GREEK_MU = "\u00b5", "\u03bc"
@@ -201,20 +229,21 @@ SPACES = ("\u00a0", "\u2009", "\u202f", "\u3000")   # no-break, thin, narrow no-
 
 
 def test_micro_sign_greek_mu_and_unicode_spaces():
-    """Both micro characters for every micro unit, and any Unicode space as a space, as src/units.cpp
-    reads them; what the simulator refuses (Arabic-Indic digits, a line separator) stays text."""
+    """Both micro characters for every micro unit, and any Unicode space as a space, in the units the
+    tools read from a command line, as src/units.cpp reads scenes; Arabic-Indic digits and a line
+    separator are refused, as the simulator refuses them."""
     for mu in (MICRO_SIGN, GREEK_MU):
-        assert parse_value(f"50 {mu}m") == 50e-6 and parse_value(f"50{mu}m") == 50e-6
-        assert parse_value(f"2 {mu}s") == 2e-6 and parse_time(f"1.2{mu}s") == 1.2e-6
+        assert parse_quantity(f"50 {mu}m") == 50e-6 and parse_quantity(f"50{mu}m") == 50e-6
+        assert parse_quantity(f"2 {mu}s") == 2e-6 and parse_time(f"1.2{mu}s") == 1.2e-6
         assert parse_length(f"50 {mu}m") == 50e-6
         assert parse_region(f"bottom 100 {mu}m 400{mu}m") == parse_region("bottom 100 um 400 um")
     for space in SPACES:
-        assert parse_value(f"50{space}um") == 50e-6 and parse_value(f"1.2{space}km/s") == 1200.0
-        assert parse_value(f"900{space}J/(kg{space}K)") == 900.0
-        assert parse_value(f"250{space}ns,{space}750 ns") == (250e-9, 750e-9)
+        assert parse_quantity(f"50{space}um") == 50e-6 and parse_quantity(f"1.2{space}km/s") == 1200.0
         assert parse_time(f"60{space}ns") == 60e-9 and parse_length(f"5{space}mm") == 5e-3
         assert parse_region(f"band{space}40{space}{GREEK_MU}m 160{space}um") == parse_region("band 40 um 160 um")
-    assert parse_value("\u0665\u0660 um") == "\u0665\u0660 um" and parse_value("5\u2028um") == "5\u2028um"
+    for refused in ("\u0665\u0660 um", "5\u2028um"):
+        with pytest.raises(converge.PostError):
+            parse_quantity(refused)
 
 
 # --- the command line and a real study --------------------------------------------------------------
@@ -315,22 +344,24 @@ def test_rerun_reuses_finished_levels(study):
 
 
 def test_scene_txt_must_match_the_request(study):
-    defaults = key_defaults(study["binary"])
     resolved = Scene((study["out"] / "level_1" / "scene.txt").read_text(), "scene.txt")
-    same = requested_scene(study["scene"], ["cell_size=1e-05"])
-    assert scene_differences(resolved, same, defaults) == []
-    assert any(d.startswith("velocity") for d in scene_differences(
-        resolved, requested_scene(study["scene"], ["cell_size=1e-05", "velocity=1.5 km/s"]), defaults))
-    assert any(d.startswith("cell_size") for d in scene_differences(resolved, requested_scene(study["scene"], []), defaults))
+    request = lambda *extra: resolved_scene(study["scene"], extra, study["binary"])   # noqa: E731
+    assert scene_differences(resolved, request("cell_size=1e-05")) == []
+    assert any(d.startswith("velocity") for d in scene_differences(resolved, request("cell_size=1e-05", "velocity=1.5 km/s")))
+    assert any(d.startswith("cell_size") for d in scene_differences(resolved, request()))
     assert any(d.startswith("region") for d in scene_differences(
-        resolved, requested_scene(study["scene"], ["cell_size=1e-05", "region.B400=bottom 100 um 300 um"]), defaults))
+        resolved, request("cell_size=1e-05", "region.B400=bottom 100 um 300 um")))
+    # A run of an older simulator, whose scene.txt lacks a key, is not taken for the request.
+    older = Scene("\n".join(line for line in (study["out"] / "level_1" / "scene.txt").read_text().splitlines()
+                            if not line.startswith("cfl")), "scene.txt")
+    assert any(d.startswith("cfl") for d in scene_differences(older, request("cell_size=1e-05")))
 
 
 def test_bad_input(study, tmp_path):
     done = converge_cli(study["binary"], study["scene"], "--out", tmp_path, "--set", "cell_size=5um")
     assert done.returncode == 1 and "sets cell_size itself" in done.stderr and "Traceback" not in done.stderr
     done = converge_cli(study["binary"], tmp_path / "missing.scene", "--out", tmp_path)
-    assert done.returncode == 1 and "cannot read scene" in done.stderr and "Traceback" not in done.stderr
+    assert done.returncode == 1 and "cannot open the scene file" in done.stderr and "Traceback" not in done.stderr
     done = converge_cli(study["binary"], study["scene"], "--out", study["out"], "--exact", "B400:nonsense=1")
     assert done.returncode == 1 and "B400:nonsense" in done.stderr
     done = converge_cli(study["binary"], study["scene"], "--out", tmp_path, "--window", "5", "10ns")
@@ -338,8 +369,9 @@ def test_bad_input(study, tmp_path):
 
 
 def test_usage_errors_exit_2_before_anything_runs(mpmshock, tmp_path):
-    """Counts below what a study needs, an --out that is not a directory and a refinement of
-    cfl = auto without --values: argparse-style usage errors (exit 2), nothing run or written."""
+    """Counts below what a study needs, an --out that is not a directory and a refinement of a key
+    that holds a word: argparse-style usage errors (exit 2), nothing run or written. cfl = auto is
+    refined from the number the simulator resolves it to."""
     scene = tmp_path / "auto.scene"
     scene.write_text(SOLID_SCENE + "cfl = auto\n")
     out = tmp_path / "out"
@@ -360,5 +392,8 @@ def test_usage_errors_exit_2_before_anything_runs(mpmshock, tmp_path):
     refused("--out", afile, says=f"--out {afile} exists and is not a directory")
     refused("--out", afile / "study", says=f"lies in {afile}, which is not a directory")
     assert afile.read_text() == "keep me\n"
-    message = refused("--out", out, "--refine", "cfl", says="--refine cfl: the scene's cfl is 'auto'")
+    message = refused("--out", out, "--refine", "update_scheme", says="--refine update_scheme: the scene's "
+                      "update_scheme is 'musl'")
     assert "give the levels with --values" in message
+    resolve = lambda extra: resolved_scene(scene, extra, mpmshock)   # noqa: E731
+    assert [lv.value for lv in plan_levels("cfl", None, 2, resolve)] == [resolve([])["cfl"], resolve([])["cfl"] / 2]

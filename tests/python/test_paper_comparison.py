@@ -1,4 +1,4 @@
-"""mpmshock_post.paper_comparison: each measurement on a series with a known answer, the rows of
+"""paper.comparison (studies/paper): each measurement on a series with a known answer, the rows of
 comparison.csv from small synthetic run directories (regions.csv with the simulator's columns), the
 csv's header and row order, and missing runs giving 'not run' rows. No simulator run is needed.
 
@@ -12,9 +12,9 @@ import h5py
 import numpy as np
 import pytest
 
-from mpmshock_post import paper_comparison as pc
-from mpmshock_post import paper_measures as pm
-from mpmshock_post import paper_rows as pr
+from paper import comparison as pc
+from paper import measures as pm
+from paper import rows as pr
 
 REGION_COLUMNS = ("count", "density_mean", "density_std", "pressure_mean", "pressure_std", "temperature_mean",
                   "temperature_std", "velocity_x_mean", "velocity_x_std", "velocity_y_mean", "velocity_y_std",
@@ -258,7 +258,7 @@ def test_a_slope_within_two_standard_errors_is_not_distinguishable_from_zero():
 
 
 def test_separation_of_a_studys_slopes():
-    from mpmshock_post.paper_rows_studies import separation_text
+    from paper.rows_studies import separation_text
     fits = [pm.Trend(0.0, 1.0, slope, 0.5, 3.0, 0.01, slope_se=1.0) for slope in (0.0, 2.0, 4.0, 9.0)]
     # neighbours 2, 2 and 5 apart against 2 sqrt(2) = 2.83; first to last 9 / sqrt(2) = 6.4
     assert separation_text(fits) == ("1 of 3 neighbouring slopes differ by more than 2 combined standard "
@@ -460,7 +460,7 @@ def test_every_shock_study_case_has_its_hugoniot_rows(rows, runs):
     case ran: delta1.4_v2000's synthetic macro_density averages 3000 - 200 * 0.75 - 100 = 2750 kg/m3 over
     the late window 900-1200 ns."""
     from mpmshock_post.hugoniot import porous_shock
-    from mpmshock_post.paper_rows_studies import CASE_SHOCKS
+    from paper.rows_studies import CASE_SHOCKS
     table = by_quantity(rows)
     material = pm.CaseRun("base", runs / "base").material
     for case, (velocity, porosity) in CASE_SHOCKS.items():
@@ -480,14 +480,15 @@ def test_every_shock_study_case_has_its_hugoniot_rows(rows, runs):
     assert strong.pressure > porous_shock(1500.0, 1.4, material).pressure > porous_shock(500.0, 1.4, material).pressure
 
 
-def test_shock_study_scenes_drive_the_shocks_the_theory_rows_assume():
-    """configs/paper/CASE.scene has the velocity and porosity of CASE_SHOCKS[CASE]."""
-    from mpmshock_post.paper_rows_studies import CASE_SHOCKS
-    from conftest import ROOT
-    from mpmshock_post.scene_input import parse_value, read_scene_text
+def test_shock_study_scenes_drive_the_shocks_the_theory_rows_assume(mpmshock):
+    """studies/paper/scenes/CASE.scene has the velocity and porosity of CASE_SHOCKS[CASE], as the
+    simulator resolves them."""
+    from paper.rows_studies import CASE_SHOCKS
+    from conftest import STUDIES
+    from mpmshock_post.resolve import resolved_scene
     for case, (velocity, porosity) in CASE_SHOCKS.items():
-        scene = read_scene_text((ROOT / "configs/paper" / f"{case}.scene").read_text())
-        assert (parse_value(scene["velocity"]), parse_value(scene["porosity"])) == (velocity, porosity), case
+        scene = resolved_scene(STUDIES / "paper/scenes" / f"{case}.scene", (), mpmshock)
+        assert (scene["velocity"], scene["porosity"]) == (velocity, porosity), case
 
 
 def test_csv_header_and_quoting(rows, tmp_path):
@@ -529,7 +530,7 @@ def test_void_size_rows_name_the_porosity_the_layout_gave_each_band(tmp_path):
 def test_layouts_give_each_number_with_its_standard_error(tmp_path, capsys):
     """paper-layouts: two layouts of the base case 20 K apart in temperature give the late mean
     temperature and Fig. 2's first maximum as their mean with SE = 10 K (|a - b| / 2), range 20 K."""
-    from mpmshock_post import paper_layouts
+    from paper import layouts as paper_layouts
     for seed, offset in ((1, 0.0), (2, 20.0)):
         write_run(tmp_path / f"seed{seed}", base_series(temperature_offset=offset), scene_text() + f"seed = {seed}\n")
     late = pm.CaseRun("base", tmp_path / "seed1").late_mean("B800", "temperature_mean").mean
@@ -548,7 +549,7 @@ def test_layouts_put_their_spread_into_the_comparison_notes(tmp_path):
     base_seed2, base_seed3 with temperatures 20 and 40 K higher give the first-maximum row the
     mean 452 K, SE 20/sqrt(3) = 11.5 K and the paper's 432 K 1.7 SE away; the number itself, rows
     of other cases and theory rows are left as they are."""
-    from mpmshock_post import paper_layouts
+    from paper import layouts as paper_layouts
     runs, layouts = tmp_path / "runs", tmp_path / "layouts"
     write_run(runs / "base", base_series(), scene_text() + "seed = 1\n")
     for seed, offset in ((2, 20.0), (3, 40.0)):
@@ -571,7 +572,7 @@ def test_layouts_put_their_spread_into_the_comparison_notes(tmp_path):
 def test_layouts_of_another_scene_or_the_same_seed_are_refused(tmp_path):
     """A 'layout' that ran another scene (here another velocity) or the campaign's own seed is
     not a layout: PostError naming the record and what differs."""
-    from mpmshock_post import paper_layouts
+    from paper import layouts as paper_layouts
     from mpmshock_post.errors import PostError
     runs = tmp_path / "runs"
     write_run(runs / "base", base_series(), scene_text() + "seed = 1\n")

@@ -1,4 +1,4 @@
-"""scripts/reproduce-paper: which runs each figure needs, valid quick scenes, the reuse / resume /
+"""studies/paper/reproduce-paper: which runs each figure needs, valid quick scenes, the reuse / resume /
 fresh decision on fake run directories, and one end-to-end campaign on tiny scenes (all 13
 figures, paper.md) that a failing case stops with its name and log.
 
@@ -13,15 +13,15 @@ import subprocess
 
 import pytest
 
-from conftest import ROOT, SCRIPTS, simulate
-from mpmshock_post import paper_runs
-from mpmshock_post.paper import build_parser
-from mpmshock_post.paper_runs import (FIGURE_CASES, PlannedRun, cases_for, command, decide, plan_runs,
+from conftest import STUDIES, simulate
+from paper import runs as paper_runs
+from paper.campaign import build_parser
+from paper.runs import (FIGURE_CASES, PlannedRun, cases_for, command, decide, plan_runs,
                                      quick_overrides)
-from mpmshock_post.scene_input import key_defaults
+from mpmshock_post.resolve import default_scene
 
-REPRODUCE = SCRIPTS / "reproduce-paper"
-PAPER_SCENES = ROOT / "configs/paper"
+REPRODUCE = STUDIES / "paper/reproduce-paper"
+PAPER_SCENES = STUDIES / "paper/scenes"
 CASES = sorted(path.stem for path in PAPER_SCENES.glob("*.scene"))
 
 # A 200 um column of 200 um plates with a few 25 um voids: a run to 1.3 us in a fraction of a second,
@@ -55,12 +55,12 @@ def reproduce(*args, scenes=None):
 
 @pytest.fixture(scope="module")
 def defaults(mpmshock):
-    return key_defaults(mpmshock)
+    return default_scene(mpmshock)
 
 
 def test_every_case_has_a_scene_and_a_figure():
     needed = {case for cases in FIGURE_CASES.values() for case in cases}
-    assert needed == set(CASES), f"figures need {sorted(needed)}, configs/paper has {CASES}"
+    assert needed == set(CASES), f"figures need {sorted(needed)}, studies/paper/scenes has {CASES}"
 
 
 def test_cases_follow_the_figures():
@@ -138,32 +138,32 @@ def set_exit_code(code):
     return change
 
 
-def test_reuse_resume_or_fresh(finished_run, defaults, tmp_path):
-    assert decide(finished_run, defaults) == ("reuse", None)
+def test_reuse_resume_or_fresh(finished_run, mpmshock, tmp_path):
+    assert decide(finished_run, mpmshock) == ("reuse", None)
 
     changed = variant(finished_run, tmp_path / "a")
     changed.overrides = ["velocity=1500"]
-    assert decide(changed, defaults) == ("fresh", None), "a run of another scene must not be reused"
+    assert decide(changed, mpmshock) == ("fresh", None), "a run of another scene must not be reused"
 
     killed = variant(finished_run, tmp_path / "b", lambda d: (d / "summary.json").unlink())
-    action, snapshot = decide(killed, defaults)
+    action, snapshot = decide(killed, mpmshock)
     assert action == "resume" and snapshot == sorted(killed.run_dir.glob("snapshot_*.h5"))[-1], (action, snapshot)
 
     for code in (130, 143):
-        action, snapshot = decide(variant(finished_run, tmp_path / f"c{code}", set_exit_code(code)), defaults)
+        action, snapshot = decide(variant(finished_run, tmp_path / f"c{code}", set_exit_code(code)), mpmshock)
         assert action == "resume" and snapshot is not None, (code, action)
 
     failed = variant(finished_run, tmp_path / "d", set_exit_code(3))
-    assert decide(failed, defaults) == ("fresh", None), "a failed run (exit 3) is rerun, not resumed"
+    assert decide(failed, mpmshock) == ("fresh", None), "a failed run (exit 3) is rerun, not resumed"
 
     def only_scene(run_dir):
         for path in run_dir.glob("snapshot_*.h5"):
             path.unlink()
         (run_dir / "summary.json").unlink()
-    assert decide(variant(finished_run, tmp_path / "e", only_scene), defaults) == ("fresh", None)
+    assert decide(variant(finished_run, tmp_path / "e", only_scene), mpmshock) == ("fresh", None)
 
     empty = PlannedRun("base", "energy", finished_run.scene, [], tmp_path / "none/base")
-    assert decide(empty, defaults) == ("fresh", None)
+    assert decide(empty, mpmshock) == ("fresh", None)
 
 
 def test_campaign_on_tiny_scenes(mpmshock, defaults, tmp_path):

@@ -5,13 +5,13 @@ standard deviations and mean squared velocity gradients; the theory rows at delt
 
 import numpy as np
 
-from .errors import PostError
-from .hugoniot import hugoniot_temperature_table, porous_shock
-from .paper_measures import (BOTTOM, BOTTOM_REGIONS, DISSIPATION_COLUMNS, PAPER_T_SUFFIX, SQUARED_RATE_UNIT,
+from mpmshock_post.errors import PostError
+from mpmshock_post.hugoniot import hugoniot_temperature_table, porous_shock
+from .measures import (BOTTOM, BOTTOM_REGIONS, DISSIPATION_COLUMNS, PAPER_T_SUFFIX, SQUARED_RATE_UNIT,
                              TEMPERATURE_MODELS, TOP_REGIONS, NotMeasured, _display_quantity, column_heights,
                              deepest_dip, exponential_decay, in_window, late_dissipation, oscillation,
                              rise_end, smooth3, trend, value_at, window_mean)
-from .paper_rows import (ENERGY_T_REASON, FRAME_TEXT, LAYOUT_REASON, PAPER_432_REASON, PAPER_T_LEAST, fmt,
+from .rows import (ENERGY_T_REASON, FRAME_TEXT, LAYOUT_REASON, PAPER_432_REASON, PAPER_T_LEAST, fmt,
                          measured_row, number_verdict, ratio, row, signed, temperature_reason, yes_no)
 
 DIP_WINDOW_END = 700.0           # ns: Fig. 2's dip near 450 ns is looked for before this
@@ -136,7 +136,9 @@ def theory_base_rows(c):
             late = run.late_mean(BOTTOM, column)
         except NotMeasured as e:
             return f"not measured: {e}"
-        return f"our B800 {column} {fmt(late.mean)} over {late.t0:.0f}-{late.t1:.0f} ns ({run.resolution})"
+        # A window mean, not a steady state: the slope says how far the state still drifts there.
+        return (f"our B800 {column} {fmt(late.mean)} over {late.t0:.0f}-{late.t1:.0f} ns (its mean; drifting "
+                f"{late.slope:+.3g} per us there; {run.resolution})")
 
     rows += [
         row("Fig 2", "theory: full-compaction porous Hugoniot density (delta 1.03, 1000 m/s)", "3.14", "g/cm3",
@@ -144,7 +146,7 @@ def theory_base_rows(c):
             f"number is its transient first maximum, the nearest it gives; {ours('base', 'macro_density')}"),
         row("Fig 2", "theory: full-compaction porous Hugoniot pressure (delta 1.03, 1000 m/s)", "16.7", "GPa",
             fmt(state.pressure * 1e-9), f"{number_verdict(state.pressure * 1e-9, 16.7, 0.03, '')}: the paper's "
-            f"first maximum overshoots the steady state; {ours('base', 'macro_normal_stress')}"),
+            f"first maximum overshoots the later state; {ours('base', 'macro_normal_stress')}"),
         row("Fig 2", "theory: full-compaction porous Hugoniot temperature (energy T) (delta 1.03, 1000 m/s)", "432",
             "K", fmt(state.temperature), f"differ: T_H(V) + (E - E_H)/c_v with the full compaction energy jump; "
             f"{ENERGY_T_REASON}; {ours('base', 'temperature_mean')}"),

@@ -4,8 +4,8 @@
 
 import numpy as np
 
-from .errors import PostError
-from .paper_measures import NotMeasured
+from mpmshock_post.errors import PostError
+from .measures import NotMeasured
 
 
 

@@ -6,12 +6,12 @@ import math
 
 import numpy as np
 
-from .errors import PostError
-from .hugoniot import hugoniot_temperature_table, porous_shock
-from .paper_measures import (BOTTOM, DISSIPATION_COLUMNS, LATE_WINDOW, PAPER_T_SUFFIX, SQUARED_RATE_UNIT,
+from mpmshock_post.errors import PostError
+from mpmshock_post.hugoniot import hugoniot_temperature_table, porous_shock
+from .measures import (BOTTOM, DISSIPATION_COLUMNS, LATE_WINDOW, PAPER_T_SUFFIX, SQUARED_RATE_UNIT,
                              TEMPERATURE_MODELS, NotMeasured, in_window, late_dissipation,
                              slopes_after_initial_stage, smooth3, window_mean)
-from .paper_rows import PAPER_T_LEAST, fmt, measured_row, ratio, row, signed, study_row, yes_no
+from .rows import PAPER_T_LEAST, fmt, measured_row, ratio, row, signed, study_row, yes_no
 
 
 
@@ -178,7 +178,7 @@ def fig9_rows(c):
     return rows + theory_delta14_rows(c)
 
 
-# The shock each case of Fig. 9, 12 and 13 drives (configs/paper/CASE.scene; test_paper_comparison checks
+# The shock each case of Fig. 9, 12 and 13 drives (studies/paper/scenes/CASE.scene; test_paper_comparison checks
 # the scenes): (impact velocity in m/s, porosity delta).
 CASE_SHOCKS = {"delta1.4": (1000.0, 1.4), "delta1.4_v500": (500.0, 1.4), "delta1.4_v1500": (1500.0, 1.4),
                "delta1.4_v2000": (2000.0, 1.4), "delta1.01": (1000.0, 1.01), "delta1.02": (1000.0, 1.02),

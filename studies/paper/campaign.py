@@ -1,7 +1,7 @@
 """reproduce-paper: the simulations and figures of Xu et al., "Simulation study of shock reaction on
-porous material", with one command (scripts/reproduce-paper --help).
+porous material", with one command (studies/paper/reproduce-paper --help).
 
-Runs every case of configs/paper the chosen figures need (paper_runs.py: reused when finished,
+Runs every case of studies/paper/scenes the chosen figures need (paper_runs.py: reused when finished,
 resumed when interrupted), draws DIR/fig01.png ... fig13.png (paper_figures.py), writes
 DIR/comparison.csv (paper_comparison.py) and DIR/paper.md with the machine, the wall times and
 everything embedded.
@@ -20,13 +20,13 @@ from pathlib import Path
 
 import matplotlib
 
-from .errors import PostError, argument_type
-from .paper_figures import CAPTIONS, CampaignRuns, make_figures, resolution
-from .paper_runs import (FIGURES, QUICK_DEFAULT_WIDTH, QUICK_PAPER_T_CASES, QUICK_SETTINGS, QUICK_WIDTH,
+from mpmshock_post.errors import PostError, argument_type
+from .figures import CAPTIONS, CampaignRuns, make_figures, resolution
+from .runs import (FIGURES, QUICK_DEFAULT_WIDTH, QUICK_PAPER_T_CASES, QUICK_SETTINGS, QUICK_WIDTH,
                          FIGURE_CASES, SNAPSHOT_FIGURES, TEMPERATURE_MODELS, cases_for, execute_all, plan_runs,
                          say, seed_from_record)
-from .reader import Run
-from .scene_input import key_defaults, mpmshock_binary
+from mpmshock_post.reader import Run
+from mpmshock_post.resolve import default_scene, mpmshock_binary
 
 
 def _figures(text):
@@ -64,15 +64,15 @@ def quick_text():
 def build_parser():
     parser = argparse.ArgumentParser(
         prog="reproduce-paper",
-        description="Runs the cases of configs/paper/*.scene and draws the 13 figures of Xu et al., 'Simulation "
+        description="Runs the cases of studies/paper/scenes/*.scene and draws the 13 figures of Xu et al., 'Simulation "
         "study of shock reaction on porous material', as DIR/fig01.png ... fig13.png, with DIR/comparison.csv "
         "and DIR/paper.md. Runs go to DIR/runs/<case> (energy temperature model) and DIR/runs/<case>-paperT "
         "(temperature_model = paper), logs to DIR/runs/<name>.log; a finished run of the same scene is reused, "
         "an interrupted one resumes from its last snapshot. The simulator is $MPMSHOCK or build/src/mpmshock.",
         epilog=quick_text() + " It took 5 to 6 minutes and 3 GB on the project's shared 2-core machine (the "
         "budget is 15 minutes); "
-        "--jobs 2 is faster there. The full campaign (configs/paper as written: 5 and 10 um cells, 2 mm wide) "
-        "takes 9 to 11 hours there on 2 MPI ranks, one run per case for both temperature models (README): "
+        "--jobs 2 is faster there. The full campaign (studies/paper/scenes as written: 5 and 10 um cells, 2 mm wide) "
+        "takes 9 to 11 hours there on 2 MPI ranks, one run per case for both temperature models (docs/reproducing-the-paper.md): "
         "--records carries it over several sittings.")
     parser.add_argument("--out", required=True, type=Path, metavar="DIR", help="output directory")
     parser.add_argument("--quick", action="store_true", help="reduced resolution and width (see below)")
@@ -89,9 +89,9 @@ def build_parser():
                         "figure reads, for Fig. 1, 3, 6 and 11, runs instead)")
     parser.add_argument("--layouts", type=Path, metavar="LAYOUTS",
                         help="runs or records of other void layouts of the cases, named CASE_seedN (such as "
-                        "docs/paper/layouts, made with --set seed=N): each comparison row that a case with layouts "
+                        "studies/paper/records/layouts, made with --set seed=N): each comparison row that a case with layouts "
                         "gives a number for alone notes the mean +- standard error over its layouts and how many "
-                        "SE the paper's value lies from it (scripts/paper-layouts)")
+                        "SE the paper's value lies from it (studies/paper/paper-layouts)")
     parser.add_argument("--temperature-models", type=argument_type(_models), default=list(TEMPERATURE_MODELS),
                         metavar="energy,paper", help="temperature models to run (default both; paper needs the "
                         "scene key temperature_model and is skipped with a message where mpmshock lacks it)")
@@ -112,10 +112,10 @@ def machine():
 
 def write_comparison(out, quick, layouts=None):
     try:
-        from .paper_comparison import comparison_rows, write_comparison_csv
-        from .paper_layouts import with_layouts
+        from .comparison import comparison_rows, write_comparison_csv
+        from .layouts import with_layouts
     except ImportError as e:
-        say(f"comparison.csv skipped: scripts/mpmshock_post/paper_comparison.py is not usable yet ({e})")
+        say(f"comparison.csv skipped: studies/paper/comparison.py is not usable yet ({e})")
         return
     rows = comparison_rows(runs_dir=out / "runs", quick=quick)
     if layouts is not None:
@@ -151,7 +151,7 @@ def write_markdown(out, argv, quick, binary, planned, records, elapsed, figure_p
     total_runs = sum(r.get("wall_seconds") or 0.0 for r in records.values() if r.get("action") != "reused")
     lines = ["# Xu et al., *Simulation study of shock reaction on porous material*, rerun by mpmshock"
              + (" (quick)" if quick else ""), "",
-             f"- command: `{' '.join(['scripts/reproduce-paper', *map(shlex.quote, argv)])}`",
+             f"- command: `{' '.join(['studies/paper/reproduce-paper', *map(shlex.quote, argv)])}`",
              f"- date: {datetime.datetime.now().isoformat(timespec='seconds')}",
              f"- machine: {machine()}",
              f"- simulator: {version} (`{binary}`)",
@@ -184,7 +184,7 @@ def main(argv=None):
         binary = mpmshock_binary()
         if not os.access(binary, os.X_OK):
             raise PostError(f"no mpmshock binary at {binary}: build it (scripts/build.sh) or set $MPMSHOCK")
-        defaults = key_defaults(binary)
+        defaults = default_scene(binary)
         models = args.temperature_models
         if "paper" in models and "temperature_model" not in defaults:
             say(f"skipping the paper temperature model: {binary} has no scene key temperature_model "
@@ -207,7 +207,7 @@ def main(argv=None):
             for run in planned:
                 if run.case not in drawn_from_snapshots and seed_from_record(run, args.records.resolve()):
                     say(f"{run.name}: taken from its record in {args.records} (no snapshots)")
-        records = execute_all(planned, binary, defaults, args.jobs, args.ranks,
+        records = execute_all(planned, binary, args.jobs, args.ranks,
                               args.records.resolve() if args.records is not None else None)
         say(f"runs done after {time.monotonic() - started:.0f} s")
 

@@ -1,4 +1,4 @@
-"""dimension-study: configs/dimension_study.scene in 2D (cylindrical voids, plane strain) and 3D
+"""dimension-study: studies/dimension/dimension.scene in 2D (cylindrical voids, plane strain) and 3D
 (spherical voids) at equal porosity and void radius, at two resolutions each, and a markdown table
 of the plateau (pressure, density, mean temperature and its spread across points) and the cost.
 
@@ -16,10 +16,10 @@ import sys
 import time
 from pathlib import Path
 
-from .errors import PostError
-from .scene_input import ROOT, mpmshock_binary
+from mpmshock_post.errors import PostError
+from mpmshock_post.resolve import mpmshock_binary
 
-SCENE = ROOT / "configs/dimension_study.scene"
+SCENE = Path(__file__).resolve().parent / "dimension.scene"
 POROSITIES = (1.1, 1.4)
 CELLS_UM = (10, 5)  # the default pair; --cells chooses another
 WIDTH_2D = "2 mm"

@@ -15,18 +15,18 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from . import timeseries
-from .compare import plot_compare
-from .errors import PostError
-from .field import plot_field, robust_limits
-from .hist import central_range, plot_histograms, region_values
-from .labels import case_label, run_labels
-from .local import local_quantity
-from .paper_runs import PAPER_SUFFIX, POROSITY_CASES, VELOCITY_CASES, VOID_SIZE_CASES
-from .reader import PaperTemperatureRun, Run, has_paper_temperature
-from .stats import moments
-from .style import COLORS, save_figure
-from .units import LENGTH_FACTOR, TIME, quantity
+from mpmshock_post import timeseries
+from mpmshock_post.compare import plot_compare
+from mpmshock_post.errors import PostError
+from mpmshock_post.field import plot_field, robust_limits
+from mpmshock_post.hist import central_range, plot_histograms, region_values
+from mpmshock_post.labels import case_label, run_labels
+from mpmshock_post.local import local_quantity
+from .runs import PAPER_SUFFIX, POROSITY_CASES, VELOCITY_CASES, VOID_SIZE_CASES
+from mpmshock_post.reader import PaperTemperatureRun, Run, has_paper_temperature
+from mpmshock_post.stats import moments
+from mpmshock_post.style import COLORS, save_figure
+from mpmshock_post.units import LENGTH_FACTOR, TIME, quantity
 
 DPI = 110
 TILE_DPI = 80  # field panels are 8 inches at their longest: three in a row stay under 3000 pixels

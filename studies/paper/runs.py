@@ -1,7 +1,7 @@
-"""The runs behind scripts/reproduce-paper: which cases each figure of Xu et al. needs, the quick
+"""The runs behind studies/paper/reproduce-paper: which cases each figure of Xu et al. needs, the quick
 settings, and whether a run directory is reused, resumed from its last snapshot or run afresh.
 
-A case is a scene file configs/paper/<case>.scene; it runs into DIR/runs/<case>/ with the energy
+A case is a scene file studies/paper/scenes/<case>.scene; it runs into DIR/runs/<case>/ with the energy
 temperature model (the simulator's default). The paper's temperature model changes no step of a run,
 only the temperature it reports, so where the simulator has the scene key `paper_temperature` that
 one run reports both models (`paper_temperature = on`, read back as the paper model's run by
@@ -26,10 +26,12 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
-from . import converge
-from .errors import PostError
-from .reader import Run
-from .scene_input import ROOT, requested_scene, scene_differences
+from mpmshock_post import converge
+from mpmshock_post.errors import PostError
+from mpmshock_post.reader import Run
+from mpmshock_post.resolve import resolved_scene, scene_differences
+
+HERE = Path(__file__).resolve().parent
 
 # The figures of the paper and the cases (scene stems) each one draws, in legend order.
 VOID_SIZE_CASES = ("void_r25", "base", "void_r100")
@@ -63,8 +65,8 @@ _RESUMABLE_EXITS = (130, 143)  # stopped by SIGINT / SIGTERM with a final snapsh
 
 
 def scenes_dir():
-    """configs/paper, or $REPRODUCE_PAPER_SCENES (the tests put tiny scenes there)."""
-    return Path(os.environ.get("REPRODUCE_PAPER_SCENES") or ROOT / "configs/paper")
+    """studies/paper/scenes, or $REPRODUCE_PAPER_SCENES (the tests put tiny scenes there)."""
+    return Path(os.environ.get("REPRODUCE_PAPER_SCENES") or HERE / "scenes")
 
 
 def cases_for(figures):
@@ -170,15 +172,15 @@ def last_snapshot(run_dir):
     return snapshots[-1].path if snapshots else None
 
 
-def decide(run, defaults):
+def decide(run, binary):
     """('reuse', None) for a finished run of the same scene; ('resume', SNAPSHOT) for a run of the
     same scene that stopped early (killed, or SIGINT / SIGTERM) and left snapshots; else
     ('fresh', None). A run that failed (exit 3) runs afresh, and fails again with its message."""
-    requested = requested_scene(run.scene, [*run.overrides, f"output_dir={run.run_dir}"])
-    if converge.reusable(run.run_dir, requested, defaults):
+    requested = resolved_scene(run.scene, [*run.overrides, f"output_dir={run.run_dir}"], binary)
+    if converge.reusable(run.run_dir, requested):
         return "reuse", None
     try:
-        same_scene = not scene_differences(Run(run.run_dir).scene, requested, defaults)
+        same_scene = not scene_differences(Run(run.run_dir).scene, requested)
     except PostError:
         return "fresh", None
     summary_file = run.run_dir / "summary.json"
@@ -194,7 +196,7 @@ def decide(run, defaults):
 
 def command(run, binary, action, snapshot, threads, ranks=1):
     """The simulator's command line; on `ranks` > 1 MPI ranks through mpirun (the outputs are the same
-    bits as one process's, README "Running on a cluster")."""
+    bits as one process's: docs/cluster.md)."""
     launch = ["mpirun", "-q", "--bind-to", "none", "-np", str(ranks)] if ranks > 1 else []
     if action == "resume":
         start = [str(binary), "--restart", str(snapshot)]
@@ -209,10 +211,15 @@ def say(text):
     print(f"reproduce-paper: {text}", file=sys.stderr, flush=True)
 
 
-def execute(run, binary, defaults, threads, ranks=1):
+def execute(run, binary, threads, ranks=1):
     """Reuses, resumes or runs one case; returns its record (action, wall seconds) or raises
-    PostError naming the case and its log."""
-    action, snapshot = decide(run, defaults)
+    PostError naming the case and its log (or, for a scene the simulator refuses, its message)."""
+    try:
+        action, snapshot = decide(run, binary)
+    except PostError as e:
+        run.log.parent.mkdir(parents=True, exist_ok=True)
+        run.log.write_text(f"{e}\n")
+        raise PostError(f"case {run.name} failed: its scene is refused; see its log {run.log}:\n{e}") from None
     if action == "reuse":
         record = read_record(run)
         wall = record.get("wall_seconds")
@@ -226,7 +233,7 @@ def execute(run, binary, defaults, threads, ranks=1):
         log.write("$ " + " ".join(cmd) + "\n")
         log.flush()
         env = dict(os.environ)
-        env.setdefault("OMP_WAIT_POLICY", "PASSIVE")  # spinning threads hurt on a shared machine (README)
+        env.setdefault("OMP_WAIT_POLICY", "PASSIVE")  # spinning threads hurt on a shared machine (docs/running.md)
         if ranks > 1 and os.geteuid() == 0:  # Open MPI runs as root only when told
             env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
             env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
@@ -255,7 +262,7 @@ def read_record(run):
         return {}
 
 
-def execute_all(runs, binary, defaults, jobs, ranks=1, records_dir=None):
+def execute_all(runs, binary, jobs, ranks=1, records_dir=None):
     """Every run, `jobs` at a time, each on `ranks` MPI ranks of max(1, cores // (jobs ranks)) threads;
     name -> record. With records_dir, each finished run's record is saved there as soon as it
     finishes, so that a campaign stopped hours in keeps what it had done. After a failure the runs
@@ -265,7 +272,7 @@ def execute_all(runs, binary, defaults, jobs, ranks=1, records_dir=None):
     records, failures = {}, []
 
     def run_and_keep(run):
-        record = execute(run, binary, defaults, threads, ranks)
+        record = execute(run, binary, threads, ranks)
         if records_dir is not None and save_record(run, records_dir) and record.get("action") != "reused":
             say(f"{run.name}: record kept in {records_dir}")
         return record

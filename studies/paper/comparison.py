@@ -1,11 +1,11 @@
 """Every number and every qualitative claim of Xu et al. (arXiv:0904.0135) set against mpmshock's
 runs: the rows of comparison.csv.
 
-    from mpmshock_post.paper_comparison import comparison_rows, write_comparison_csv
+    from paper.comparison import comparison_rows, write_comparison_csv
     rows = comparison_rows("DIR/runs")            # list of dicts, in the paper's figure order
     write_comparison_csv(rows, "DIR/comparison.csv")
 
-Runs. runs_dir/<case>/ is an mpmshock run directory of configs/paper/<case>.scene with the default
+Runs. runs_dir/<case>/ is an mpmshock run directory of studies/paper/scenes/<case>.scene with the default
 (energy) temperature model; runs_dir/<case>-paperT/ is the same case with `temperature_model =
 paper`, or, where that directory is absent, <case>/ itself read with its paper_temperature columns
 (a run made with `paper_temperature = on` reports both models). Cases: base (delta 1.03, r 50 um, 1000 m/s; Fig. 1-8), void_r25, void_r100 (Fig. 7-8),
@@ -40,11 +40,11 @@ Definitions shared by the rows (each measurement function's docstring gives its 
 
 import csv
 
-from .paper_measures import Campaign
-from .paper_rows_base import (fig1_rows, fig2_dip_rows, fig2_rise_rows, fig2_steady_rows, fig2_top_rows,
+from .measures import Campaign
+from .rows_base import (fig1_rows, fig2_dip_rows, fig2_rise_rows, fig2_steady_rows, fig2_top_rows,
                               fig2_velocity_rows, fig3_rows, fig4_rows, fig5_rows, fig6_rows,
                               first_maximum_time_rows, first_maximum_value_rows, theory_base_rows)
-from .paper_rows_studies import fig7_rows, fig8_rows, fig9_rows, fig10_rows, fig11_rows, fig12_rows, fig13_rows
+from .rows_studies import fig7_rows, fig8_rows, fig9_rows, fig10_rows, fig11_rows, fig12_rows, fig13_rows
 
 COLUMNS = ("figure", "quantity", "paper", "mpmshock", "unit", "note")
 

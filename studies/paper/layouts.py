@@ -1,6 +1,6 @@
 """paper-layouts CASE=DIR [CASE=DIR ...]: how much the void layout alone moves the paper's numbers.
 
-Each DIR is a finished run of a paper case (configs/paper/CASE.scene) with its own `seed`: runs of
+Each DIR is a finished run of a paper case (studies/paper/scenes/CASE.scene) with its own `seed`: runs of
 one case with different seeds are layouts of the same sample, as a new sample would be in an
 experiment. For each case this prints, in Markdown,
 - B800's late-window means per layout (the last 300 ns, as comparison.csv's 'steady' values),
@@ -11,7 +11,7 @@ The SE is the error a single-layout number carries beside docs/accuracy.md's dis
 the paper's numbers come from one layout each.
 
 reproduce-paper --layouts DIR puts the same spread into comparison.csv (with_layouts): DIR holds
-records or runs named CASE_seedN (docs/paper/layouts), and each row that the campaign's CASE run
+records or runs named CASE_seedN (studies/paper/records/layouts), and each row that the campaign's CASE run
 gives a number for alone gets, in its note, the mean +- SE over its layouts and how many SE the
 paper's value lies from that mean.
 """
@@ -26,12 +26,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import PostError, argument_type
-from .paper_comparison import comparison_rows
-from .paper_measures import BOTTOM, CaseRun, NotMeasured
-from .paper_rows import fmt
-from .reader import PaperTemperatureRun, has_paper_temperature
-from .scene import Scene
+from mpmshock_post.errors import PostError, argument_type
+from .comparison import comparison_rows
+from .measures import BOTTOM, CaseRun, NotMeasured
+from .rows import fmt
+from mpmshock_post.reader import PaperTemperatureRun, has_paper_temperature
+from mpmshock_post.scene import Scene
 
 LATE_COLUMNS = (("T, energy (K)", "temperature_mean"), ("density (g/cm3)", "density_mean"),
                 ("pressure (GPa)", "pressure_mean"), ("<Rot^2> (1/ns^2)", "rot2_mean"),

@@ -11,11 +11,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import PostError
-from .hist import distribution_moments
-from .hugoniot import Material, default_material, porous_shock
-from .reader import PaperTemperatureRun, Run, has_paper_temperature
-from .units import TIME, quantity
+from mpmshock_post.errors import PostError
+from mpmshock_post.hist import distribution_moments
+from mpmshock_post.hugoniot import Material, default_material, porous_shock
+from mpmshock_post.reader import PaperTemperatureRun, Run, has_paper_temperature
+from mpmshock_post.units import TIME, quantity
 
 PAPER_T_SUFFIX = "-paperT"
 TEMPERATURE_MODELS = ("energy T", "paper T")
