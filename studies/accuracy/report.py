@@ -23,7 +23,8 @@ class Prose:
     continues it on the next line, and each block is a string.Template."""
 
     def __init__(self, path=TEMPLATE):
-        text = Path(path).read_text(encoding="utf-8").replace("\\\n", "")
+        self.path = Path(path)
+        text = self.path.read_text(encoding="utf-8").replace("\\\n", "")
         self.blocks, name, lines = {}, None, []
         for line in text.split("\n") + ["@@ "]:
             if line.startswith("@@ "):
@@ -38,7 +39,7 @@ class Prose:
         try:
             return self.blocks[block].substitute(values)
         except KeyError as e:
-            raise KeyError(f"{TEMPLATE.name}: block {block!r}: no value for {e}") from None
+            raise KeyError(f"{self.path.name}: block {block!r}: no value for {e}") from None
 
     def heading(self, name):
         """The heading that opens block NAME, without its '#'s."""
