@@ -387,6 +387,9 @@ void probe_in_child(const std::string& path, F&& read) {
   if (::pipe(fds) != 0) throw std::runtime_error("cannot make a pipe to check it");
   std::fflush(nullptr);
   const pid_t parent = ::getpid();
+  // Heard from before the fork: a stop signal that comes while the child starts (a loaded machine
+  // makes that window wide) is then acted on by the loop below, not raised again as a plain kill.
+  const StopRequestsHeard heard;
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("cannot fork to check it");
   if (pid == 0) {
@@ -409,7 +412,6 @@ void probe_in_child(const std::string& path, F&& read) {
   ::close(fds[1]);
   std::string message;
   char buf[512];
-  const StopRequestsHeard heard;  // the loop below ends the check on a stop signal
   for (;;) {
     if (stop_signal() != 0) {
       ::kill(pid, SIGKILL);
