@@ -55,16 +55,17 @@ struct VonMises {
   // The yield radius only ever grows by beta H d eps_p, so it is a function of the effective
   // plastic strain and need not be stored. With Softening it stops at Steinberg-Guinan's Y_max.
   double yield_radius(double eps_p) const {
-    const double radius = initial_yield + beta * plastic_modulus * eps_p;
-    if constexpr (Softening) return std::min(radius, softening.yield_max);
-    return radius;
+    if constexpr (Softening) return std::min(hardened_yield(eps_p), softening.yield_max);
+    return hardened_yield(eps_p);
   }
   // The hardening modulus at eps_p: none once the yield radius has reached Y_max.
   double hardening_at(double eps_p) const {
     if constexpr (Softening)
-      if (initial_yield + beta * plastic_modulus * eps_p >= softening.yield_max) return 0.0;
+      if (hardened_yield(eps_p) >= softening.yield_max) return 0.0;
     return plastic_modulus;
   }
+  // sigma_Y0 + beta H eps_p, the linear hardening law before any cap.
+  double hardened_yield(double eps_p) const { return initial_yield + beta * plastic_modulus * eps_p; }
 
   // Radial return of a trial deviatoric stress onto sqrt(3/2)||s - alpha|| = sigma_Y(eps_p).
   // Updates s, alpha and eps_p in place; returns the effective plastic strain increment
