@@ -97,7 +97,10 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
     }
   }
   if (s.volumetric_smoothing) on.push_back("volumetric smoothing");
-  if (s.effects.spall) on.push_back("spall");
+  if (s.effects.spall)
+    on.push_back(std::string("spall (") +
+                 (s.spall_criterion == SpallCriterion::neighbourhood ? "the neighbourhood's" : "each point's own") +
+                 " tension against " + std::to_string(s.spall_strength / 1e9).substr(0, 4) + " GPa)");
   if (model.conducts_heat()) on.push_back("heat conduction");
   if (s.porosity > 1.0) on.push_back("voids");
   out << "effects:";

@@ -47,7 +47,8 @@ MeltCurve melt_curve_of(const Scene& s) {
 
 Model::Model(const Scene& s)
     : shape(shape_of(s)), eos(MieGruneisen(s.material)), strength(strength_of(s)), viscosity(viscosity_of(s)),
-      failure(s.effects.spall ? FailureLaw(Spall{s.spall_strength, s.spall_void_fraction}) : FailureLaw(NoFailure{})),
+      failure(s.effects.spall ? FailureLaw(Spall{s.spall_strength, s.spall_void_fraction,
+                                                         s.spall_criterion == SpallCriterion::neighbourhood, s.spall_point_ceiling}) : FailureLaw(NoFailure{})),
       scheme(s.update_scheme), flip_fraction(s.flip_fraction), taylor_quinney(s.taylor_quinney), cell_size(s.cell_size), cfl(s.cfl),
       // No material point outruns several times the impact speed plus the sound speed; a point
       // that does is a blow-up.

@@ -39,11 +39,16 @@ void check_csv_header(const fs::path& path, const std::string& expected, const s
                    " has the columns of another mpmshock version; continue in a new directory (--set output_dir=DIR)");
 }
 
+bool scene_sets(const std::string& scene_text, const std::string& key) {
+  return scene_text.rfind(key + " =", 0) == 0 || scene_text.find("\n" + key + " =") != std::string::npos;
+}
+
 // A snapshot written before the symmetry key existed ran the whole domain: it goes on so (its
-// scene would otherwise read symmetry = auto and drop its flyer).
+// scene would otherwise read symmetry = auto and drop its flyer). One written before
+// spall_criterion existed judged spall point by point: it goes on so.
 std::vector<std::string> with_old_defaults(const std::string& scene_text, std::vector<std::string> overrides) {
-  if (scene_text.rfind("symmetry =", 0) != 0 && scene_text.find("\nsymmetry =") == std::string::npos)
-    overrides.push_back("symmetry=off");
+  if (!scene_sets(scene_text, "symmetry")) overrides.push_back("symmetry=off");
+  if (!scene_sets(scene_text, "spall_criterion")) overrides.push_back("spall_criterion=point");
   return overrides;
 }
 

@@ -380,9 +380,9 @@ const std::vector<Key>& keys() {
                      "both models for the cost of one run; the run itself is unchanged",
                      FIELD(paper_temperature)));
     k.push_back(flag("spall", "off",
-                     "failure in tension: a point whose largest principal stress reaches spall_strength opens "
-                     "with its tension held at the strength and no shear, and separates (no tension) once its "
-                     "void fraction reaches spall_void_fraction",
+                     "failure in tension: a point in tension whose neighbourhood's largest principal stress "
+                     "reaches spall_strength (spall_criterion) opens with its tension held at the strength and no "
+                     "shear, and separates (no tension) once its void fraction reaches spall_void_fraction",
                      FIELD(effects.spall)));
     k.push_back(quantity("spall_strength", D::pressure, Range{0.0, 1e12, true, false}, "1.2 GPa",
                          "spall strength (aluminium alloys: 1.0-1.6 GPa at 1e4-1e6 /s)", FIELD(spall_strength)));
@@ -390,6 +390,18 @@ const std::vector<Key>& keys() {
                          "void fraction 1 - J_f/J at which an opening point separates (0: at once; 0.15: void "
                          "coalescence in ductile metals)",
                          FIELD(spall_void_fraction)));
+    k.push_back(choice<SpallCriterion>("spall_criterion",
+                       {{"neighbourhood", SpallCriterion::neighbourhood}, {"point", SpallCriterion::point}},
+                       "neighbourhood",
+                       "what reaches spall_strength: neighbourhood, the mass-weighted mean of the largest principal "
+                       "stress over the point's stencil (a point-to-point stress pattern does not fail material "
+                       "whose mean is not in tension); point, the point's own",
+                       FIELD(spall_criterion)));
+    k.push_back(quantity("spall_point_ceiling", D::none, Range{1.0, 1e6, true, false}, "2",
+                         "with spall_criterion = neighbourhood: the point's own largest principal stress, in units of "
+                         "spall_strength, that opens it whatever its neighbourhood holds (a point at a void's rim "
+                         "stretched while the material around it is compressed)",
+                         FIELD(spall_point_ceiling)));
     k.push_back(flag("heat_conduction", "off",
                      "Fourier heat conduction between points through the grid, with thermal_conductivity "
                      "(needs thermal = on)",

@@ -25,7 +25,8 @@ bool bin_points(StripBins& bins, const Particles<D>& pts, PointRange range, cons
 // The kernels for one choice of shape function and laws: every combination the variants of
 // model.hpp allow is instantiated by std::visit, none is listed by hand.
 template <int D, class Shape, class Eos, class Strength, class Viscosity, class Failure>
-Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction, bool conduction, bool smoothing, bool heat_flux) {
+Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction, bool conduction, bool smoothing, bool heat_flux,
+                       [[maybe_unused]] const Failure& failure) {
   constexpr bool stress = Strength::has_stress;
   Kernels<D> k{};
   k.support = Shape::support;
@@ -41,6 +42,8 @@ Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction, bool conductio
   k.update_points = update_all_points<D, Eos, Strength, Viscosity, Failure>;
   if (conduction) k.conduct = conduct_heat<D, Shape>;
   if (heat_flux) k.heat_flux = artificial_heat_flux<D, Shape>;
+  if constexpr (std::is_same_v<Failure, Spall>)
+    if (failure.by_neighbourhood) k.open_in_tension = open_by_neighbourhood_tension<D, Shape>;
   if (smoothing) {
     k.smooth_pressure = smooth_pressure<D, Shape>;
     k.smooth_volume_rate = smooth_volume_rate<D, Shape>;
@@ -54,7 +57,7 @@ Kernels<D> kernels_for(const Model& m) {
       [&](auto shape, const auto& eos, const auto& strength, const auto& viscosity, const auto& failure) {
         return kernels_for<D, decltype(shape), std::decay_t<decltype(eos)>, std::decay_t<decltype(strength)>,
                            std::decay_t<decltype(viscosity)>, std::decay_t<decltype(failure)>>(
-            m.scheme, m.flip_fraction, m.conducts_heat(), m.volumetric_smoothing, m.heat_flux_beta > 0.0);
+            m.scheme, m.flip_fraction, m.conducts_heat(), m.volumetric_smoothing, m.heat_flux_beta > 0.0, failure);
       },
       m.shape, m.eos, m.strength, m.viscosity, m.failure);
 }
@@ -367,6 +370,9 @@ StepStatus Simulation<D>::step(double dt) {
                                 musl ? grid_.v_remap : grid_.v, dt, smoothing_);
   const double* volume_rate = kernels_.smooth_volume_rate ? smoothing_.volume_rate.data() : nullptr;
   StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt, volume_rate);  // E, F, s, P, q
+  if (kernels_.open_in_tension)                                        //   spall: by the neighbourhood's tension
+    kernels_.open_in_tension(points_, reached, bins_, grid_, stencils_, halo_, plane_,
+                             std::get<Spall>(model_.failure), node_tension_);
   StepStatus effect;  // MPI: the effects' checks are agreed with the step's (one collective)
   if (comm_->parallel())
     for (auto& e : effects_)

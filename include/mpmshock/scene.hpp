@@ -25,6 +25,10 @@ enum class ShapeFunction { bilinear, gimp, bspline2 };
 // out the compaction heating of collapsing voids, which is what the paper's reported numbers fit.
 enum class TemperatureModel { energy, paper };
 
+// What a point's spall criterion reads (spall_neighbourhood.hpp): the largest principal stress of
+// its neighbourhood (default) or its own.
+enum class SpallCriterion { neighbourhood, point };
+
 // Symmetry about the impact plane y = 0 (symmetry_plane.hpp, mirror_image.hpp): on simulates the
 // target alone and takes the flyer as its mirror image; automatic (the key's "auto") becomes on or
 // off when the scene is parsed, so a parsed Scene holds on or off.
@@ -88,6 +92,8 @@ struct Scene {
   ShapeFunction shape_function = ShapeFunction::bspline2;
   double spall_strength = 1.2e9;  // [Pa] tension at which a point fails (spall = on)
   double spall_void_fraction = 0.15;  // void fraction at which a failed point separates (spall.hpp)
+  SpallCriterion spall_criterion = SpallCriterion::neighbourhood;
+  double spall_point_ceiling = 2.0;  // a point's own tension that opens it regardless, over spall_strength
   double taylor_quinney = 1.0;    // share of plastic work that becomes heat
   TemperatureModel temperature_model = TemperatureModel::energy;
   bool paper_temperature = false;  // also report the paper model's temperature beside the energy model's

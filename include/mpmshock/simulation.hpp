@@ -25,6 +25,7 @@
 #include "mpmshock/model.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
+#include "mpmshock/spall_neighbourhood.hpp"
 #include "mpmshock/step_effect.hpp"
 #include "mpmshock/strip_bins.hpp"
 #include "mpmshock/symmetry_plane.hpp"
@@ -55,6 +56,9 @@ struct Kernels {
   // The artificial heat flux, or null when the scene has none.
   void (*heat_flux)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
                     const Halo<D>&, const HugoniotTemperature&, ArtificialHeatFlux&, const SymmetryPlane<D>*, double dt);
+  // Spall's neighbourhood criterion (spall_neighbourhood.hpp), or null when the scene has none.
+  void (*open_in_tension)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
+                          const Halo<D>&, const SymmetryPlane<D>*, const Spall&, std::vector<double>& node_tension);
   // Heat conduction, or null when the scene has none.
   void (*conduct)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
                   const Halo<D>&, const HugoniotTemperature&, HeatConduction&, const SymmetryPlane<D>*, double dt);
@@ -179,6 +183,7 @@ class Simulation {
   HeatConduction heat_;
   VolumetricSmoothing smoothing_;  // its scratch (volumetric_smoothing = on)
   ArtificialHeatFlux heat_flux_;
+  std::vector<double> node_tension_;  // spall's neighbourhood criterion: its nodal sums
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;
   const SymmetryPlane<D>* plane_ = nullptr;  // the symmetry plane among effects_ (symmetry = on), for conduction
   UnreachedMaterial<D> unreached_;
