@@ -231,11 +231,13 @@ class Study:
         return command, subprocess.run(command, capture_output=True, text=True)
 
     def check(self, scene, cell_size, extra=()):
-        """(material points, step lower bound) that `mpmshock SCENE --check` prints at this cell size."""
+        """(simulated material points, step lower bound) that `mpmshock SCENE --check` prints at this
+        cell size: with symmetry on, the target's points alone (the flyer is their mirror image)."""
         command, done = self._check_output(scene, cell_size, extra)
         if done.returncode != 0:
             raise PostError(f"{' '.join(command)} exited {done.returncode}: {done.stderr.strip()}")
-        points = re.search(r"^material points: (\d+)", done.stdout, re.M)
+        points = (re.search(r"^symmetry: on: the target's (\d+) points are simulated", done.stdout, re.M)
+                  or re.search(r"^material points: (\d+)", done.stdout, re.M))
         steps = re.search(r"at least (\d+) steps to ", done.stdout)
         if not (points and steps):
             raise PostError(f"{' '.join(command)}: no point or step count in\n{done.stdout}")
