@@ -31,16 +31,27 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   };
   const double porosity = porosity_of(st.target, st.flyer);
   out << "scene " << s.source << "\n";
+  std::ostringstream speeds;
+  if (s.flyer_velocity == s.target_velocity) speeds << "impact speed +-" << s.flyer_velocity << " m/s";
+  else speeds << "flyer at " << s.flyer_velocity << " m/s, target at " << 0.0 - s.target_velocity << " m/s";
   if (D == 2)
-    out << "bodies (width " << s.width * 1e3 << " mm, periodic in x, 2D plane strain, impact speed +-" << s.velocity
-        << " m/s)\n";
+    out << "bodies (width " << s.width * 1e3 << " mm, periodic in x, 2D plane strain, " << speeds.str() << ")\n";
   else
     out << "bodies (3D, width " << s.width * 1e3 << " mm x depth " << s.derived_depth() * 1e3
-        << " mm, periodic in x and z, impact speed +-" << s.velocity << " m/s)\n";
+        << " mm, periodic in x and z, " << speeds.str() << ")\n";
   body(st.target);
   body(st.flyer);
-  out << "  porosity requested " << s.porosity << ", achieved " << porosity << " (relative error "
-      << std::abs(porosity - s.porosity) / s.porosity << ")\n";
+  if (s.flyer_material != "scene" || s.target_material != "scene") {
+    auto named = [](const std::string& n) { return n == "scene" ? std::string("the scene's material keys") : n; };
+    out << "  materials: target " << named(s.target_material) << " (" << s.material_of(false).density
+        << " kg/m3), flyer " << named(s.flyer_material) << " (" << s.material_of(true).density << " kg/m3)\n";
+  }
+  if (s.flyer_porosity == s.porosity)
+    out << "  porosity requested " << s.porosity << ", achieved " << porosity << " (relative error "
+        << std::abs(porosity - s.porosity) / s.porosity << ")\n";
+  else
+    out << "  porosity requested " << s.porosity << " (target), " << s.flyer_porosity << " (flyer); achieved "
+        << st.target.porosity() << ", " << st.flyer.porosity() << "\n";
   out << "grid: " << g.nx << (D == 3 ? " x " + std::to_string(g.nz) : std::string()) << " x " << g.ny - 1 << " cells of " << g.h * 1e6 << " um, y " << g.y_min * 1e3 << " .. "
       << g.y_max() * 1e3 << " mm, " << g.nodes() << " nodes\n";
   const std::size_t whole = st.target.material_points + st.flyer.material_points, simulated = st.particles.size();
@@ -85,7 +96,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
          << s.latent_heat << " J/kg)";
     on.push_back(melt.str());
   }
-  if (s.material.bound_expansion) on.push_back("bounded expansion (Rose binding curve)");
+  if (s.material_of(true).bound_expansion || s.material_of(false).bound_expansion)
+    on.push_back("bounded expansion (Rose binding curve)");
   if (s.effects.artificial_viscosity) {
     std::ostringstream av;
     av << "artificial viscosity (A1 " << s.av_linear << ", A2 " << s.av_quadratic << ")";

@@ -30,56 +30,65 @@ ThermalSoftening softening_of(const Scene& s) {
   return soft;
 }
 
-StrengthLaw strength_of(const Scene& s) {
+StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
   if (!s.effects.plasticity) return NoStrength{};
-  const bool isotropic = s.material.hardening_beta == 1.0;
+  const bool isotropic = mat.hardening_beta == 1.0 && !back_stress;
   if (s.effects.thermal_softening) {
-    if (isotropic) return VonMises<false, true>(s.material, softening_of(s));
-    return VonMises<true, true>(s.material, softening_of(s));
+    if (isotropic) return VonMises<false, true>(mat, softening_of(s));
+    return VonMises<true, true>(mat, softening_of(s));
   }
-  if (isotropic) return VonMises<false>(s.material);
-  return VonMises<true>(s.material);
+  if (isotropic) return VonMises<false>(mat);
+  return VonMises<true>(mat);
 }
 
 MeltCurve melt_curve_of(const Scene& s) {
-  return {s.melt_temperature, s.lindemann_a, s.material.gruneisen_gamma};
+  return {s.melt_temperature, s.lindemann_a, s.material_of(false).gruneisen_gamma};  // one material (scene.cpp)
+}
+
+bool kinematic_hardening(const Scene& s) {
+  return s.material_of(true).hardening_beta != 1.0 || s.material_of(false).hardening_beta != 1.0;
 }
 
 Model::Model(const Scene& s)
-    : shape(shape_of(s)), eos(MieGruneisen(s.material)), strength(strength_of(s)), viscosity(viscosity_of(s)),
+    : shape(shape_of(s)),
+      eos{MieGruneisen(s.material_of(true)), MieGruneisen(s.material_of(false))},
+      strength{strength_of(s, s.material_of(true), kinematic_hardening(s)), strength_of(s, s.material_of(false), kinematic_hardening(s))},
+      viscosity(viscosity_of(s)),
       failure(s.effects.spall ? FailureLaw(Spall{s.spall_strength, s.spall_void_fraction,
                                                          s.spall_criterion == SpallCriterion::neighbourhood, s.spall_point_ceiling}) : FailureLaw(NoFailure{})),
       scheme(s.update_scheme), flip_fraction(s.flip_fraction), taylor_quinney(s.taylor_quinney), cell_size(s.cell_size), cfl(s.cfl),
       // No material point outruns several times the impact speed plus the sound speed; a point
       // that does is a blow-up.
-      speed_limit(10.0 * (2.0 * s.velocity + s.material.sound_speed)) {
-  if (s.effects.thermal) thermal.emplace(s.material, s.temperature_model, s.paper_temperature);
+      speed_limit(10.0 * (2.0 * s.fastest_body_speed() +
+                          std::max(s.material_of(true).sound_speed, s.material_of(false).sound_speed))) {
+  if (s.effects.thermal) thermal.emplace(s.material_of(true), s.material_of(false), s.temperature_model, s.paper_temperature);
   if (thermal && s.effects.thermal_softening) thermal->set_melting(melt_curve_of(s), s.latent_heat);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;
   volumetric_smoothing = s.volumetric_smoothing;
   if (s.effects.thermal && s.effects.artificial_viscosity) heat_flux_beta = s.av_heat_flux;
-  if (s.effects.heat_conduction && s.material.thermal_conductivity > 0.0) {
-    conductivity = s.material.thermal_conductivity;
-    diffusivity = conductivity / (s.material.density * s.material.specific_heat);
+  const Material& one = s.material_of(false);  // conduction needs one material (scene.cpp)
+  if (s.effects.heat_conduction && one.thermal_conductivity > 0.0) {
+    conductivity = one.thermal_conductivity;
+    diffusivity = conductivity / (one.density * one.specific_heat);
   }
 }
 
-double Model::limiting_compression() const {
-  return std::visit([](const auto& e) { return e.limiting_compression(); }, eos);
+double Model::limiting_compression(Body b) const {
+  return std::visit([](const auto& e) { return e.limiting_compression(); }, eos[static_cast<std::size_t>(b)]);
 }
 
-double Model::eos_fit_limit() const {
-  return std::visit([](const auto& e) { return e.fit_limit(); }, eos);
+double Model::eos_fit_limit(Body b) const {
+  return std::visit([](const auto& e) { return e.fit_limit(); }, eos[static_cast<std::size_t>(b)]);
 }
 
-double Model::shear_modulus() const {
+double Model::shear_modulus(Body b) const {
   return std::visit(
       [](const auto& law) {
         if constexpr (std::decay_t<decltype(law)>::has_stress) return law.shear_modulus;
         else return 0.0;
       },
-      strength);
+      strength[static_cast<std::size_t>(b)]);
 }
 
 }  // namespace mpmshock

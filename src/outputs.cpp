@@ -46,7 +46,7 @@ void Outputs<D>::start_rows(Simulation<D>& sim, double dt) {
 
 template <int D>
 void Outputs<D>::write_probe_rows(const Simulation<D>& sim) {
-  const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
+  const BodyTemperatures* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   probes_.write_rows(probes_file_.get(), sim.time(), sim.particles(), thermal, mirror_, comm_);
   next_probe_ = probes_.next_after(sim.time());
 }
@@ -59,7 +59,7 @@ void Outputs<D>::sample(Simulation<D>& sim, double dt) {
 template <int D>
 void Outputs<D>::write_samples(Simulation<D>& sim, double dt, bool regions, bool conservation) {
   sim.settle();
-  const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
+  const BodyTemperatures* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   // Regions of the target alone see the same points either way; a band may reach into the flyer.
   std::optional<Particles<D>> whole;
   if (regions_need_whole_) whole = mirror_.with_images(sim.particles());
@@ -92,7 +92,7 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run, bool fa
     gathered.emplace(sim.gathered_grid(options.grid_rows));
     options.grid = &*gathered;
   }
-  const HugoniotTemperature* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
+  const BodyTemperatures* thermal = sim.model().thermal ? &*sim.model().thermal : nullptr;
   options.mirror = &mirror_;
   options.comm = &comm_;
   write_snapshot((dir_ / name).string(), sim.particles(), thermal, run, options);  // every rank: its points

@@ -136,7 +136,7 @@ double Probes<D>::next_after(double t) const {
 }
 
 template <int D>
-void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal,
+void Probes<D>::write_rows(std::FILE* out, double time, const Particles<D>& p, const BodyTemperatures* thermal,
                            const MirrorImage<D>& mirror, const Comm& comm) const {
   enum { kX, kY, kZ, kVx, kVy, kVz, kP, kRho, kT, kPaperT, kSums };
   const bool paper = thermal && thermal->reports_paper_temperature();

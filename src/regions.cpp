@@ -59,7 +59,7 @@ enum BandSum { kBandMass = kMeans, kBandPressure, kBandNormal, kSums };
 template <int D>
 struct PointValues {
   const Particles<D>& p;
-  const HugoniotTemperature* thermal;
+  const BodyTemperatures* thermal;
   double operator()(int k, std::size_t q) const {
     switch (k) {
       case kDensity: return p.density(q);
@@ -100,7 +100,7 @@ void add_band_sums(const Particles<D>& p, const Band& b, ExactSum* sums) {
 
 template <int D>
 std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector<RegionSpec>& regions,
-                                        const HugoniotTemperature* thermal, double cross_section, const Comm& comm) {
+                                        const BodyTemperatures* thermal, double cross_section, const Comm& comm) {
   const double y_top = target_top(p, comm);
   const PointValues<D> value{p, thermal};
   const std::size_t n = regions.size();
@@ -176,8 +176,8 @@ void write_region_rows(std::FILE* out, double time, const std::vector<RegionStat
 }
 
 template std::vector<RegionStats> sample_regions<2>(const Particles<2>&, const std::vector<RegionSpec>&,
-                                                    const HugoniotTemperature*, double, const Comm&);
+                                                    const BodyTemperatures*, double, const Comm&);
 template std::vector<RegionStats> sample_regions<3>(const Particles<3>&, const std::vector<RegionSpec>&,
-                                                    const HugoniotTemperature*, double, const Comm&);
+                                                    const BodyTemperatures*, double, const Comm&);
 
 }  // namespace mpmshock

@@ -147,7 +147,6 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
   for (std::size_t q = 0; q < n; ++q)  // snapshots hold points in id order, and restarts rely on it
     if (p.id[q] != r.first_point + q) bad("its point ids are not a numbering of its points in order");
   const Model model(scene);
-  const double J_min = model.limiting_compression();
   auto finite = [](const auto& values) {
     const auto* d = reinterpret_cast<const double*>(values.data());
     const std::size_t count = values.size() * sizeof(values[0]) / sizeof(double);
@@ -178,7 +177,7 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
         for (std::size_t q = 0; q < n; ++q) {
           const std::string which = "point " + std::to_string(p.id[q]);
           if (!(p.m[q] > 0.0 && p.V0[q] > 0.0)) bad(which + " has no mass or volume");
-          if (!(p.J(q) > J_min)) bad(which + " has J = det F = " + std::to_string(p.J(q)) + ", not a volume");
+          if (!(p.J(q) > model.limiting_compression(p.body[q]))) bad(which + " has J = det F = " + std::to_string(p.J(q)) + ", not a volume");
           const Vec<D>& x = p.x[q];
           if (!(x[0] >= 0.0 && x[0] < grid.width())) bad(which + " lies outside the column (x = " + std::to_string(x[0]) + " m)");
           if constexpr (D == 3)

@@ -127,6 +127,7 @@ struct Key {
   std::string choices;  // for Kind::choice and flags: "musl|usl"
   std::function<void(Scene&, const std::string& text, const Origin&)> set;
   std::function<std::string(const Scene&)> get;  // resolved value, SI
+  bool material = false;  // a constant of the material (Scene::material), also set as material.NAME.KEY
 };
 
 // What every key has: its name, kind, default and meaning.
@@ -283,8 +284,23 @@ const std::vector<Key>& keys() {
     k.push_back(quantity("velocity", D::speed, Range{0.0, 1e5, true, false}, "1000 m/s",
                          "each body moves at this speed toward the impact plane y = 0 (target down, flyer up)",
                          FIELD(velocity)));
+    k.push_back(quantity("flyer_velocity", D::speed, Range{0.0, 1e5, false, false}, "auto",
+                         "the flyer's speed toward the impact plane (up); auto = velocity", FIELD(flyer_velocity)));
+    k.push_back(quantity("target_velocity", D::speed, Range{0.0, 1e5, false, false}, "auto",
+                         "the target's speed toward the impact plane (down); auto = velocity; 0: the laboratory "
+                         "frame, the target at rest", FIELD(target_velocity)));
     k.push_back(quantity("porosity", D::none, closed(1.0, 10.0), "1.03",
-                         "delta = rho_solid / rho_porous of both bodies; 1 means solid, no voids", FIELD(porosity)));
+                         "delta = rho_solid / rho_porous of the target (and of the flyer unless flyer_porosity is "
+                         "set); 1 means solid, no voids", FIELD(porosity)));
+    k.push_back(quantity("flyer_porosity", D::none, closed(1.0, 10.0), "auto",
+                         "delta of the flyer; auto = porosity (1: a solid flyer on a porous target)",
+                         FIELD(flyer_porosity)));
+    k.push_back(text("flyer_material", "scene",
+                     "the flyer's material: scene (the bare material keys below), a built-in one (mpmshock "
+                     "--materials: aluminium, copper, tantalum, lif, pmma) or one material.NAME.KEY keys define",
+                     FIELD(flyer_material)));
+    k.push_back(text("target_material", "scene", "the target's material, as flyer_material",
+                     FIELD(target_material)));
     k.push_back(quantity("void_radius", D::length, positive(), "50 um", "mean void radius",
                          FIELD(void_radius)));
     k.push_back(quantity("void_radius_spread", D::length, non_negative(), "0 m",
@@ -439,7 +455,9 @@ const std::vector<Key>& keys() {
                          FIELD(taylor_quinney)));
     k.push_back(flag("artificial_viscosity", "on", "shock-capturing bulk viscosity in compression",
                      FIELD(effects.artificial_viscosity)));
-    // Material (the paper's aluminium)
+    // Material (the paper's aluminium): the material named "scene"; material.NAME.KEY sets the same
+    // keys of a named material.
+    const std::size_t first_material_key = k.size();
     k.push_back(quantity("density", D::density, Range{0.0, 1e5, true, false}, "2700 kg/m3", "solid reference density rho0",
                          FIELD(material.density)));
     k.push_back(quantity("youngs_modulus", D::pressure, Range{0.0, 1e13, true, false}, "69 GPa",
@@ -478,6 +496,7 @@ const std::vector<Key>& keys() {
                          "the largest particle velocity the Us-up fit describes (217 GPa on the aluminium Hugoniot); "
                          "points compressed past its Hugoniot state are counted as outside the equation of state's range",
                          FIELD(material.fit_particle_velocity)));
+    for (std::size_t i = first_material_key; i < k.size(); ++i) k[i].material = true;
     // Output
     k.push_back(text("output_dir", "output", "directory for regions.csv, snapshots and the summary (no control characters, no '#')",
                      FIELD(output_dir)));
@@ -747,6 +766,29 @@ Entry parse_override(const std::string& arg, int index) {
   return e;
 }
 
+// material.NAME.KEY = value: KEY, a material key, of the material NAME (a built-in one, or a new
+// one that starts from aluminium's constants).
+void set_material_key(Scene& scene, const Entry& e) {
+  const std::string rest = e.key.substr(std::string("material.").size());
+  const auto dot = rest.find('.');
+  const std::string name = rest.substr(0, dot), key = dot == std::string::npos ? "" : rest.substr(dot + 1);
+  if (name.empty() || key.empty()) throw error_at(e.at, e.key, "expected material.NAME.KEY = value");
+  if (name == "scene")
+    throw error_at(e.at, e.key, "the material named scene is set by the bare keys: write " + key + " = " + e.value);
+  const Key* k = find_key(key);
+  if (!k || !k->material) {
+    std::string list;
+    for (const Key& m : keys())
+      if (m.material) list += (list.empty() ? "" : ", ") + m.name;
+    throw error_at(e.at, e.key, "'" + key + "' is not a material key (" + list + ")");
+  }
+  Scene holder;  // the key sets Scene::material: set it on a scene holding this material
+  const auto it = scene.materials.find(name);
+  holder.material = it != scene.materials.end() ? it->second : Material{};
+  k->set(holder, e.value, e.at);
+  scene.materials[name] = holder.material;
+}
+
 bool is_multiple(double length, double unit) {
   const double n = std::round(length / unit);
   return n >= 1 && std::abs(n * unit - length) <= 1e-9 * length;
@@ -812,9 +854,33 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   }
   if (s.effects.heat_conduction && !s.effects.thermal)
     fail("heat_conduction", "needs thermal = on (conduction moves heat by temperature differences)");
+  // The bodies' materials: each named one must exist, and its constants fit together.
+  bool materials_known = true;
+  for (const auto& [key, name] : {std::pair{"flyer_material", s.flyer_material}, std::pair{"target_material", s.target_material}}) {
+    if (name == "scene" || s.materials.count(name)) continue;
+    std::string list;
+    for (const auto& m : s.materials) list += ", " + m.first;
+    fail(key, "'" + name + "' is not a material: scene (the bare material keys)" + list +
+                  " (mpmshock --materials lists the built-in ones; material.NAME.KEY keys define new ones)");
+    materials_known = false;
+  }
   if (s.material.tangent_modulus >= s.material.youngs_modulus)
     fail("tangent_modulus", "must be smaller than youngs_modulus");
-  if (s.porosity > 1.0) {
+  for (const auto& [name, m] : s.materials)
+    if (m.tangent_modulus >= m.youngs_modulus)
+      fail("material." + name + ".tangent_modulus", "must be smaller than youngs_modulus of material " + name);
+  if (materials_known && !s.one_material()) {
+    // The laws below read one set of constants for every point (per-material versions: issue 29).
+    if (s.effects.heat_conduction)
+      fail("heat_conduction", "needs both bodies of one material (flyer_material " + s.flyer_material +
+                                  ", target_material " + s.target_material + "); conduction between materials is not implemented");
+    if (s.effects.thermal_softening)
+      fail("thermal_softening", "needs both bodies of one material (flyer_material " + s.flyer_material +
+                                    ", target_material " + s.target_material + "): its melt curve and constants are one material's");
+  }
+  if (!(s.flyer_velocity + s.target_velocity > 0.0))
+    fail("flyer_velocity", "the bodies do not approach each other: flyer_velocity + target_velocity must be > 0");
+  if (s.porosity > 1.0 || s.flyer_porosity > 1.0) {
     if (s.void_radius_spread >= s.void_radius) fail("void_radius_spread", "must be smaller than void_radius");
     const double r_min = s.void_radius - s.void_radius_spread;
     const double r_max = s.void_radius + s.void_radius_spread;
@@ -822,10 +888,13 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
       fail("void_radius", "voids smaller than the material-point spacing (" + format_number(a) +
                               " m) cannot be cut from the points; refine cell_size or use larger voids");
     const double across = s.dimension == 3 ? std::min(s.width, s.derived_depth()) : s.width;
-    if (2.0 * r_max + s.void_min_gap > std::min({across, s.target_height, s.flyer_height}))
+    const double porous_height = s.porosity > 1.0 && s.flyer_porosity > 1.0 ? std::min(s.target_height, s.flyer_height)
+                                 : s.porosity > 1.0                           ? s.target_height
+                                                                              : s.flyer_height;
+    if (2.0 * r_max + s.void_min_gap > std::min(across, porous_height))
       fail("void_radius", "voids that cannot fit: a void of diameter " + format_number(2.0 * r_max) +
                               " m does not fit in the bodies");
-    if (s.flyer_mirror && std::abs(s.flyer_height - s.target_height) > 1e-12 * s.target_height)
+    if (s.mirrors_flyer() && std::abs(s.flyer_height - s.target_height) > 1e-12 * s.target_height)
       fail("flyer_mirror", "a mirrored flyer needs flyer_height = target_height");
   }
   if (s.symmetry == Symmetry::on) {
@@ -856,10 +925,13 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                           " material points; at most 2e9 are supported");
   // The first time step sees the longitudinal sound speed (bulk plus shear with strength) and the
   // impact speed; shocked material is faster still, so this is a floor on the step count.
-  const Material& mat = s.material;
-  const double cL2 = mat.sound_speed * mat.sound_speed +
-                     (s.effects.plasticity ? (4.0 / 3.0) * mat.shear_modulus() / mat.density : 0.0);
-  const double signal = std::sqrt(cL2) + s.velocity;
+  double signal = 0.0;
+  for (const bool flyer : {true, false}) {
+    const Material& mat = materials_known ? s.material_of(flyer) : s.material;
+    const double cL2 = mat.sound_speed * mat.sound_speed +
+                       (s.effects.plasticity ? (4.0 / 3.0) * mat.shear_modulus() / mat.density : 0.0);
+    signal = std::max(signal, std::sqrt(cL2) + (flyer ? s.flyer_velocity : s.target_velocity));
+  }
   const double steps_estimate = s.end_time * signal / (s.cfl * s.cell_size);
   if (!(steps_estimate <= 1e12))
     fail("end_time", "the run would take more than " + format_number(std::floor(steps_estimate)) +
@@ -874,9 +946,35 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
 std::string asymmetry_of(const Scene& s) {
   if (std::abs(s.flyer_height - s.target_height) > 1e-12 * s.target_height)
     return "flyer_height differs from target_height";
+  if (s.flyer_porosity != s.porosity) return "flyer_porosity differs from porosity";
   if (s.porosity > 1.0 && !s.flyer_mirror) return "flyer_mirror = off gives the flyer its own voids";
+  if (s.flyer_velocity != s.target_velocity) return "flyer_velocity differs from target_velocity";
+  if ((s.flyer_material == "scene" || s.materials.count(s.flyer_material)) &&
+      (s.target_material == "scene" || s.materials.count(s.target_material)) && !s.one_material())
+    return "the flyer's material differs from the target's";
   return "";
 }
+
+bool same_constants(const Material& a, const Material& b) {
+  return a.density == b.density && a.youngs_modulus == b.youngs_modulus && a.poisson_ratio == b.poisson_ratio &&
+         a.yield_stress == b.yield_stress && a.tangent_modulus == b.tangent_modulus &&
+         a.hardening_beta == b.hardening_beta && a.sound_speed == b.sound_speed &&
+         a.hugoniot_slope == b.hugoniot_slope && a.gruneisen_gamma == b.gruneisen_gamma &&
+         a.specific_heat == b.specific_heat && a.thermal_conductivity == b.thermal_conductivity &&
+         a.initial_temperature == b.initial_temperature && a.cohesive_energy == b.cohesive_energy &&
+         a.bound_expansion == b.bound_expansion && a.fit_particle_velocity == b.fit_particle_velocity;
+}
+
+const Material& Scene::material_of(bool flyer) const {
+  const std::string& name = flyer ? flyer_material : target_material;
+  return name == "scene" ? material : materials.at(name);
+}
+
+bool Scene::one_material() const { return same_constants(material_of(true), material_of(false)); }
+
+bool Scene::mirrors_flyer() const { return flyer_mirror && porosity > 1.0 && flyer_porosity == porosity; }
+
+double Scene::fastest_body_speed() const { return std::max(flyer_velocity, target_velocity); }
 
 double Scene::points_across() const {
   const double a = particle_spacing();
@@ -885,7 +983,7 @@ double Scene::points_across() const {
 
 double Scene::derived_grid_margin() const {
   if (grid_margin >= 0.0) return grid_margin;
-  return 8.0 * cell_size + 2.0 * velocity * end_time;
+  return 8.0 * cell_size + 2.0 * fastest_body_speed() * end_time;
 }
 
 std::vector<RegionSpec> paper_regions() {
@@ -930,6 +1028,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
     k.set(scene, k.default_text, Origin{"default"});
   }
   std::vector<RegionSpec> regions;
+  std::vector<const Entry*> material_entries;
   for (const auto& [key, e] : by_key) {
     const Entry& entry = e;
     errors.collect(e.at, [&] {
@@ -941,6 +1040,10 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
         scene.probes.push_back(parse_probe(entry));
         return;
       }
+      if (key.rfind("material.", 0) == 0) {
+        material_entries.push_back(&entry);
+        return;
+      }
       const Key* k = find_key(key);
       if (!k) throw error_at(entry.at, key, "unknown key" + did_you_mean(key));
       if (k->kind == Kind::text && key == "output_dir") check_path(entry.at, key, entry.value);
@@ -948,6 +1051,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
       k->set(scene, entry.value, entry.at);
     });
   }
+  for (const LibraryMaterial& m : material_library()) scene.materials[m.name] = m.constants;
+  for (const Entry* e : material_entries) errors.collect(e->at, [&] { set_material_key(scene, *e); });
   // The consistency of the keys is judged only on keys that are each right.
   errors.throw_if_any();
   // Regions and probes in the order the file lists them, not alphabetical.
@@ -966,6 +1071,9 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
 
   for (const auto& [key, e] : by_key) scene.origin[key] = e.at.where;
   if (scene.cfl < 0.0) scene.cfl = scene.dimension == 3 ? kCfl3D : kCfl2D;
+  if (std::isnan(scene.flyer_velocity)) scene.flyer_velocity = scene.velocity;
+  if (std::isnan(scene.target_velocity)) scene.target_velocity = scene.velocity;
+  if (std::isnan(scene.flyer_porosity)) scene.flyer_porosity = scene.porosity;
   check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; }, errors);
   errors.throw_if_any();
   if (scene.symmetry == Symmetry::automatic)
@@ -1017,6 +1125,17 @@ std::string resolved_scene(const Scene& scene) {
     if (k.name == "depth") value = format_number(scene.derived_depth()) + " m";
     out += k.name + " = " + value + "\n";
   }
+  // The named materials the bodies use, every constant: a run reads back as it ran, whatever the
+  // library holds later.
+  std::vector<std::string> named;
+  for (const std::string& name : {scene.target_material, scene.flyer_material})
+    if (name != "scene" && std::find(named.begin(), named.end(), name) == named.end()) named.push_back(name);
+  for (const std::string& name : named) {
+    Scene holder;  // the material keys read Scene::material
+    holder.material = scene.materials.at(name);
+    for (const Key& k : keys())
+      if (k.material) out += "material." + name + "." + k.name + " = " + k.get(holder) + "\n";
+  }
   for (const RegionSpec& r : scene.regions) {
     out += "region." + r.name + " = ";
     switch (r.kind) {
@@ -1032,6 +1151,20 @@ std::string resolved_scene(const Scene& scene) {
     else out += "point " + format_number(p.x) + " m " + format_number(p.y) + " m";
     if (p.kind == ProbeSpec::Kind::point && p.z >= 0.0) out += " " + format_number(p.z) + " m";
     out += "\n";
+  }
+  return out;
+}
+
+std::string material_library_text() {
+  std::string out =
+      "# The built-in materials: flyer_material = NAME, target_material = NAME; each line is a key a\n"
+      "# scene may set to change it (material.NAME.KEY = value); a new NAME starts from aluminium.\n";
+  for (const LibraryMaterial& m : material_library()) {
+    out += "\n# " + m.name + ": " + m.source + "\n";
+    Scene holder;  // the material keys read Scene::material
+    holder.material = m.constants;
+    for (const Key& k : keys())
+      if (k.material) out += "material." + m.name + "." + k.name + " = " + k.get(holder) + "\n";
   }
   return out;
 }

@@ -36,7 +36,7 @@ namespace {
 // The optional per-point fields the scene's effects need.
 template <int D>
 void enable_fields(Particles<D>& p, const Scene& s) {
-  const StrengthLaw strength = strength_of(s);
+  const StrengthLaw strength = strength_of(s, s.material_of(false), kinematic_hardening(s));  // both bodies' type
   p.enable_strength(has_stress(strength), has_back_stress(strength));
   p.enable_failure(s.effects.spall);
   p.enable_cold_work(s.effects.plasticity && s.taylor_quinney < 1.0);
@@ -159,8 +159,9 @@ InitialBuilder<D>::InitialBuilder(const Scene& s) : scene_(s) {
   std::mt19937_64 rng(static_cast<std::uint64_t>(s.seed));
   try {
     target_voids_ = seed_voids(target_, request, rng);
-    flyer_voids_ = (s.flyer_mirror && s.porosity > 1.0) ? mirror_layout(target_voids_, target_)
-                                                        : seed_voids(flyer_, request, rng);
+    VoidRequest flyer_request = request;
+    flyer_request.porosity = s.flyer_porosity;
+    flyer_voids_ = s.mirrors_flyer() ? mirror_layout(target_voids_, target_) : seed_voids(flyer_, flyer_request, rng);
   } catch (const VoidSeedingError& e) {
     throw SceneError(s.where("porosity") + ": key 'porosity': " + e.what());
   }
@@ -184,12 +185,13 @@ InitialState<D> InitialBuilder<D>::build(const std::vector<char>* keep) const {
   const bool mirrored = s.symmetry == Symmetry::on;
   std::size_t row = 0, id = 0;
   if (!mirrored) {
-    add_points(st.particles, flyer_, flyer_voids_, +s.velocity, s.material.density, Body::flyer, flyer_rows_, keep,
+    add_points(st.particles, flyer_, flyer_voids_, s.flyer_velocity, s.material_of(true).density, Body::flyer, flyer_rows_, keep,
                row, id);
     row += static_cast<std::size_t>(flyer_.rows);
     for (std::size_t c : flyer_rows_) id += c;
   }
-  add_points(st.particles, target_, target_voids_, -s.velocity, s.material.density, Body::target, target_rows_, keep,
+  add_points(st.particles, target_, target_voids_, 0.0 - s.target_velocity, s.material_of(false).density, Body::target,
+             target_rows_, keep,
              row, id);
   st.target = summarize("target", target_, target_voids_);
   st.flyer = summarize("flyer", flyer_, flyer_voids_);

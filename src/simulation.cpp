@@ -59,7 +59,7 @@ Kernels<D> kernels_for(const Model& m) {
                            std::decay_t<decltype(viscosity)>, std::decay_t<decltype(failure)>>(
             m.scheme, m.flip_fraction, m.conducts_heat(), m.volumetric_smoothing, m.heat_flux_beta > 0.0, failure);
       },
-      m.shape, m.eos, m.strength, m.viscosity, m.failure);
+      m.shape, m.eos[1], m.strength[1], m.viscosity, m.failure);  // the flyer's laws are of the same types
 }
 
 // The step effects a model calls for, in the order their slots run.
@@ -132,10 +132,14 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
   remember_unreached();
   heat_flux_.beta = model_.heat_flux_beta;
   heat_flux_.cell_size = model_.cell_size;
-  heat_flux_.specific_heat = scene.material.specific_heat;
-  heat_flux_.sound_speed = scene.material.sound_speed;
+  for (const Body b : {Body::flyer, Body::target}) {
+    const Material& mat = scene.material_of(b == Body::flyer);
+    heat_flux_.specific_heat[static_cast<std::size_t>(b)] = mat.specific_heat;
+    heat_flux_.sound_speed[static_cast<std::size_t>(b)] = mat.sound_speed;
+  }
+  heat_flux_.one_material = scene.one_material();
   heat_.conductivity = model_.conductivity;
-  heat_.specific_heat = scene.material.specific_heat;
+  heat_.specific_heat = scene.material_of(false).specific_heat;  // conduction needs one material (scene.cpp)
   if (model_.conducts_heat())
     heat_.relaxation_time = model_.cell_size * model_.cell_size / (M_PI * M_PI * model_.diffusivity);
 }
@@ -467,10 +471,11 @@ Grid<D> Simulation<D>::gathered_grid(RowRange& rows) const {
 
 template <int D>
 std::size_t Simulation<D>::points_beyond_eos_fit() const {
-  const double J_fit = model_.eos_fit_limit();
+  const double J_fit[2] = {model_.eos_fit_limit(Body::flyer), model_.eos_fit_limit(Body::target)};
   std::int64_t n = 0;
 #pragma omp parallel for schedule(static) reduction(+ : n)
-  for (std::size_t p = 0; p < points_.size(); ++p) n += points_.material_J(p) < J_fit ? 1 : 0;
+  for (std::size_t p = 0; p < points_.size(); ++p)
+    n += points_.material_J(p) < J_fit[static_cast<std::size_t>(points_.body[p])] ? 1 : 0;
   return static_cast<std::size_t>(comm_->sum(n));
 }
 
@@ -522,13 +527,13 @@ void Simulation<D>::describe_point(std::ostream& out, StepStatus::Code code, std
     case StepStatus::Code::bad_state:
       out << "material point " << id << " reached a non-physical state";
       if (!(J > 0.0)) out << " (J = det F <= 0: the point turned inside out)";
-      else if (!(J > model_.limiting_compression())) out << " (compressed past the Hugoniot's limit J = 1 - 1/s)";
+      else if (!(J > model_.limiting_compression(pts.body[p]))) out << " (compressed past the Hugoniot's limit J = 1 - 1/s)";
       else if (!std::isfinite(pts.P[p]) || !std::isfinite(pts.E[p])) out << " (non-finite pressure or energy)";
       else out << " (runaway speed above " << model_.speed_limit << " m/s)";
       break;
     case StepStatus::Code::below_zero_kelvin:
       out << "material point " << id << " reached a non-physical state (temperature "
-          << model_.thermal->temperature(pts.material_J(p), pts.thermal_energy(p)) << " K: its internal energy " << pts.E[p]
+          << model_.thermal->energy_temperature(pts, p) << " K: its internal energy " << pts.E[p]
           << " J/kg is below the 0 K isotherm at J = " << J << "); at ";
       print_vector(out, pts.x[p]);
       out << " m with pressure " << pts.P[p] << " Pa. Typical cause: a shock without enough artificial viscosity";

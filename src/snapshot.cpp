@@ -92,7 +92,7 @@ Column<D> field(hid_t g, const char* name, std::vector<hsize_t> shape, const cha
 }
 
 template <int D>
-Columns<D> particle_columns(hid_t g, const Particles<D>& layout, const HugoniotTemperature* thermal, int level,
+Columns<D> particle_columns(hid_t g, const Particles<D>& layout, const BodyTemperatures* thermal, int level,
                             const MeltCurve& melt) {
   const Compression always{level > 0 ? level : 1};  // fields that compress >100x: worth it at any setting
   const Compression chosen{level};
@@ -516,7 +516,7 @@ void write_header(hid_t f, const RunState& run, std::size_t rows) {
 }  // namespace
 
 template <int D>
-void write_snapshot(const std::string& path, const Particles<D>& p, const HugoniotTemperature* thermal,
+void write_snapshot(const std::string& path, const Particles<D>& p, const BodyTemperatures* thermal,
                     const RunState& run, const SnapshotOptions<D>& options) {
   h5::prepare_library();
   const Comm& comm = options.comm ? *options.comm : Comm::world();
@@ -751,7 +751,7 @@ Restart<D> read_snapshot(const std::string& path, const PointChooser& choose) {
 }
 
 #define MPMSHOCK_INSTANTIATE(D)                                                                                  \
-  template void write_snapshot<D>(const std::string&, const Particles<D>&, const HugoniotTemperature*,            \
+  template void write_snapshot<D>(const std::string&, const Particles<D>&, const BodyTemperatures*,            \
                                   const RunState&, const SnapshotOptions<D>&);                                    \
   template Restart<D> read_snapshot<D>(const std::string&, const PointChooser&);
 MPMSHOCK_INSTANTIATE(2)

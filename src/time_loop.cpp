@@ -47,7 +47,8 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   RunResult result;
   result.output_dir = dir.string();
   result.start_time = sim.time();
-  result.porosity = porosity_of(run.target, run.flyer);
+  // The bodies' porosity; the target's where the flyer has its own (flyer_porosity).
+  result.porosity = scene.flyer_porosity == scene.porosity ? porosity_of(run.target, run.flyer) : run.target.porosity();
   result.voids = run.target.voids.size() + run.flyer.voids.size();
   result.points = sim.total_points();
   result.symmetry = sim.model().symmetry_plane;
@@ -161,7 +162,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   }
 
   result.beyond_eos_fit = std::max(result.beyond_eos_fit, sim.points_beyond_eos_fit());
-  result.beyond_eos_fit_J = sim.model().eos_fit_limit();
+  result.beyond_eos_fit_J = sim.model().eos_fit_limit(Body::target);
   finish_result(result, sim, run.initial, out.totals(sim), start_steps);
   omp_set_num_threads(all_threads);
   if (comm.root()) write_summary_json(dir / "summary.json", result);

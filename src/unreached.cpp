@@ -13,9 +13,9 @@ namespace mpmshock {
 
 template <int D>
 UnreachedMaterial<D>::UnreachedMaterial(const Scene& scene, const Particles<D>& pts, const Comm& comm)
-    : comm_(&comm), on_(true), flyer_velocity_(scene.velocity), target_velocity_(-scene.velocity),
-      margin_(kMarginCells * scene.cell_size), speed_tolerance_(1e-9 * std::max(scene.velocity, 1.0)),
-      energy_tolerance_(1e-12 * 0.5 * std::max(scene.velocity, 1.0) * std::max(scene.velocity, 1.0)) {
+    : comm_(&comm), on_(true), flyer_velocity_(scene.flyer_velocity), target_velocity_(0.0 - scene.target_velocity),
+      margin_(kMarginCells * scene.cell_size), speed_tolerance_(1e-9 * std::max(scene.fastest_body_speed(), 1.0)),
+      energy_tolerance_(1e-12 * 0.5 * std::max(scene.fastest_body_speed(), 1.0) * std::max(scene.fastest_body_speed(), 1.0)) {
   // Every rank's points; the flyer's are the ids below the first target point's.
   std::int64_t counts[2] = {static_cast<std::int64_t>(pts.size()),
                             static_cast<std::int64_t>(std::count(pts.body.begin(), pts.body.end(), Body::flyer))};
@@ -81,17 +81,17 @@ PointRange UnreachedMaterial<D>::computed(const Particles<D>& pts) const {
 
 template <int D>
 void UnreachedMaterial<D>::measure_signal(const Model& model, const Particles<D>& pts) {
-  // Every unreached point has the same state (and the same speed, up or down): the signal of one,
-  // the one one process takes (the first flyer point, else the first unreached target point), from
-  // the rank that holds it.
-  const std::size_t id = head_ > 0 ? 0 : tail_;
-  const std::size_t sample = id < points_ ? index_of_id(pts, static_cast<std::uint32_t>(id)) : pts.size();
-  double signal = id < points_ ? -std::numeric_limits<double>::infinity() : 0.0;
-  if (sample < pts.size()) {
+  // Every unreached point of a body has the same state (its body's material at its speed): the
+  // signal of one of each (the first flyer point, the first unreached target point), from the rank
+  // that holds it.
+  double signal = 0.0;
+  for (const std::size_t id : {head_ > 0 ? std::size_t{0} : points_, tail_}) {
+    const std::size_t sample = id < points_ ? index_of_id(pts, static_cast<std::uint32_t>(id)) : pts.size();
+    if (sample >= pts.size()) continue;
     Particles<D> one;
     one.enable_fields_of(pts);
     one.append_copy(pts, sample);
-    signal = initial_signal_speed(one, model);
+    signal = std::max(signal, initial_signal_speed(one, model));
   }
   signal_ = std::max(comm_->max(signal), 0.0);
 }

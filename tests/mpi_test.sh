@@ -72,6 +72,10 @@ compare porous3d "$data/tiny_porous_3d.scene" --set probe.top=surface
 compare smoothing "$data/tiny_porous.scene" --set volumetric_smoothing=on --set av_linear=0.75 \
   --set bounded_expansion=on
 compare smoothing_whole "$data/tiny_porous.scene" --set volumetric_smoothing=on --set flyer_mirror=off
+# Two materials (issue 29): a solid copper flyer, its yield changed by a material key, on the porous
+# aluminium target at rest (the laboratory frame).
+compare materials "$data/tiny_porous.scene" --set flyer_material=copper --set flyer_porosity=1 \
+  --set target_velocity=0 --set "material.copper.yield_stress=200 MPa" --set spall=on "${probes[@]}"
 
 # Restart on another number of ranks: from the middle snapshot of the 1-rank run, on 3 ranks, and
 # from the middle of a 2-rank run on 1 rank: the same files as the run straight through (probes.csv
@@ -92,6 +96,7 @@ restart_in_out 1 porous-2 restart1 "2-rank run restarted on 1 rank"
 # Each rank reads its share of a snapshot's points: the whole impact (no mirror image, probes on)
 # from the middle of the 3-rank run on 2 ranks.
 restart_in_out 2 whole-3 restart-whole "3-rank whole impact restarted on 2 ranks"
+restart_in_out 2 materials-1 restart-materials "two-material run restarted on 2 ranks"
 
 # A snapshot whose last point is bad (unsealed, so that it is read at all): the rank whose share
 # holds it finds it, when it reads the rows (a body that is neither) or when it checks the points

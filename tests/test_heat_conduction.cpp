@@ -56,14 +56,14 @@ Result interface(const std::string& cell) {
   const double alpha = scene.material.thermal_conductivity / (scene.material.density * scene.material.specific_heat);
   const double L = 2.0 * std::sqrt(alpha * sim.time());
   const Particles<D>& pts = sim.particles();
-  const HugoniotTemperature& thermal = *sim.model().thermal;
+  const BodyTemperatures& thermal = *sim.model().thermal;
   double max_error = 0.0, sum2 = 0.0;
   for (std::size_t q = 0; q < pts.size(); ++q) {
     const double y = pts.x[q][1], H = 200e-6;
     double exact = scene.material.initial_temperature;
     for (int n = -2; n <= 2; ++n)  // hot on (4nH - 2H, 4nH)
       exact += 0.5 * dT * (std::erfc((y - 4 * n * H) / L) - std::erfc((y - 4 * n * H + 2 * H) / L));
-    const double e = thermal.temperature(pts.J(q), pts.E[q]) - exact;
+    const double e = thermal.of_body(pts.body[q]).temperature(pts.J(q), pts.E[q]) - exact;
     max_error = std::max(max_error, std::abs(e));
     sum2 += e * e;
   }

@@ -121,5 +121,42 @@ int main() {
     CHECK(s.probes.size() == 1 && s.probes[0].z == 30e-6);
     CHECK(resolved_scene(s).find("probe.p = point 1e-05 m 2e-05 m 3e-05 m") != std::string::npos);
   }
+  // Materials (issue 29): the bare keys are the material "scene" of both bodies; a body may name a
+  // built-in material, material.NAME.KEY changes one or defines a new one (from aluminium's values).
+  {
+    const Scene plain = parse_scene("", "m.scene");
+    CHECK(plain.flyer_material == "scene" && plain.target_material == "scene" && plain.one_material());
+    CHECK(plain.flyer_velocity == 1000.0 && plain.target_velocity == 1000.0 && plain.flyer_porosity == plain.porosity);
+    CHECK(same_constants(plain.materials.at("aluminium"), plain.material));  // the bare keys' defaults
+    const Scene cu = parse_scene("flyer_material = copper\ntarget_velocity = 0\nflyer_velocity = 500 m/s\n"
+                                 "material.copper.yield_stress = 0.2 GPa\nmaterial.steel.density = 7850 kg/m3\n",
+                                 "m.scene");
+    CHECK(cu.material_of(true).density == 8930.0 && cu.material_of(true).yield_stress == 0.2e9);
+    CHECK(cu.material_of(false).density == 2700.0 && !cu.one_material());
+    CHECK(cu.materials.at("steel").density == 7850.0 && cu.materials.at("steel").sound_speed == 5350.0);
+    CHECK(cu.symmetry == Symmetry::off && cu.target_velocity == 0.0 && cu.fastest_body_speed() == 500.0);
+    // The resolved scene holds every constant of the named material and reads back to the same run.
+    const std::string text = resolved_scene(cu);
+    CHECK(text.find("material.copper.yield_stress = 2e+08 Pa\n") != std::string::npos);
+    CHECK(text.find("material.steel.") == std::string::npos);  // defined, but no body's
+    CHECK(resolved_scene(parse_scene(text, "scene.txt")) == text);
+    CHECK(parse_scene("flyer_material = aluminium\ntarget_material = aluminium\n", "m.scene").symmetry == Symmetry::on);
+    CHECK_THROWS_WITH(parse_scene("flyer_material = steel\n", "m.scene"), "m.scene:1", "'flyer_material'",
+                      "'steel' is not a material", "copper");
+    CHECK_THROWS_WITH(parse_scene("material.copper.colour = red\n", "m.scene"), "m.scene:1",
+                      "'material.copper.colour'", "not a material key", "density");
+    CHECK_THROWS_WITH(parse_scene("material.scene.density = 1\n", "m.scene"), "m.scene:1", "bare keys");
+    CHECK_THROWS_WITH(parse_scene("material.copper.density = -1\n", "m.scene"), "m.scene:1", "out of range");
+    CHECK_THROWS_WITH(parse_scene("material.copper\n", "m.scene"), "m.scene:1");
+    CHECK_THROWS_WITH(parse_scene("flyer_material = copper\nthermal_softening = on\n", "m.scene"),
+                      "'thermal_softening'", "one material");
+    CHECK_THROWS_WITH(parse_scene("target_material = pmma\nheat_conduction = on\n", "m.scene"),
+                      "'heat_conduction'", "one material");
+    CHECK_THROWS_WITH(parse_scene("flyer_velocity = 0\ntarget_velocity = 0\n", "m.scene"), "'flyer_velocity'",
+                      "do not approach");
+    CHECK_THROWS_WITH(parse_scene("flyer_material = lif\nsymmetry = on\n", "m.scene"), "'symmetry'",
+                      "material differs");
+    CHECK(find_library_material("tantalum") && !find_library_material("steel"));
+  }
   return check::result();
 }

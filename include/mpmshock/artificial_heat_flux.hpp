@@ -8,20 +8,24 @@
 // into differences of 1e-9 between a symmetric and a whole run), so uniform states and plateaus are
 // untouched, and the total energy is conserved to round-off.
 //
-//   1. nodal rate and temperature   r_i = sum_p N_ip m_p r_p / m_i,  T_i = sum_p N_ip m_p T_p / m_i
-//   2. point energy                 E_p += c_v sum_i N_ip r_i (T_i - T_p)
+//   1. nodal rate and temperature   r_i = sum_p N_ip C_p r_p / C_i,  T_i = sum_p N_ip C_p T_p / C_i
+//   2. point energy                 E_p += c_v,p sum_i N_ip r_i (T_i - T_p)
+//
+// with C_p = m_p c_v,p / c_v,flyer the point's heat capacity in units of the flyer material's
+// specific heat and C_i = sum_p N_ip C_p; with one material C_p = m_p and C_i the nodal mass m_i.
 //
 // with r_p = 1 - exp(-dt / tau_p), tau_p = h^2 / (pi^2 alpha_p) the decay time of the slowest
 // sub-cell temperature mode (wavelength 2h, as heat conduction's relaxation). Each point relaxes
 // toward its nodes' mean temperature at their rate; with r_i <= 1 the new temperature is a convex
-// combination (no new extremes, stable at any dt). Energy: sum_p m_p sum_i N_ip r_i (T_i - T_p)
-// = sum_i r_i (m_i T_i - sum_p N_ip m_p T_p) = 0 at every node. T is the energy model's temperature
+// combination (no new extremes, stable at any dt). Energy: sum_p m_p c_v,p sum_i N_ip r_i (T_i - T_p)
+// = c_v,flyer sum_i r_i (C_i T_i - sum_p N_ip C_p T_p) = 0 at every node. T is the energy model's temperature
 // T_H(J) + (E - E_H(J)) / c_v whatever temperature_model reports (the flux moves internal energy).
 //
 // It runs after P2G on the step's stencils and bins, with the states of the step's start, folds its
 // nodal sums across a symmetry plane and sums them across MPI ranks' shared rows as conduction does.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -37,16 +41,18 @@
 namespace mpmshock {
 
 struct ArtificialHeatFlux {
-  double beta = 0.0;           // alpha = beta h q / (rho c0)
-  double cell_size = 0.0;      // h
-  double specific_heat = 0.0;  // c_v
-  double sound_speed = 0.0;    // c0, the scale of the viscous pressure
-  std::vector<double> node_rate, node_temperature;  // m_i r_i and m_i T_i, then r_i and T_i
+  double beta = 0.0;                     // alpha = beta h q / (rho c0)
+  double cell_size = 0.0;                // h
+  std::array<double, 2> specific_heat{};  // c_v by body
+  std::array<double, 2> sound_speed{};    // c0 by body, the scale of the viscous pressure
+  bool one_material = true;               // C_p = m_p, C_i = m_i
+  std::vector<double> node_rate, node_temperature;  // C_i r_i and C_i T_i, then r_i and T_i
+  std::vector<double> node_capacity;                // C_i, with two materials
 };
 
 template <int D, class Shape>
 void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
-                          const StencilStore<D>& store, const Halo<D>& halo, const HugoniotTemperature& thermal,
+                          const StencilStore<D>& store, const Halo<D>& halo, const BodyTemperatures& thermal,
                           ArtificialHeatFlux& flux, const SymmetryPlane<D>* plane, double dt) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();
@@ -57,31 +63,47 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = first; i < last; ++i) flux.node_rate[i] = flux.node_temperature[i] = 0.0;
   halo.zero(flux.node_rate, flux.node_temperature);
+  const bool two = !flux.one_material;
+  if (two) {
+    flux.node_capacity.resize(geo.nodes());
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = first; i < last; ++i) flux.node_capacity[i] = 0.0;
+    halo.zero(flux.node_capacity);
+  }
+  const double capacity[2] = {1.0, flux.specific_heat[1] / flux.specific_heat[0]};  // c_v,b / c_v,flyer
 
   // The step's scratch holds T_p (written again by the velocity gradient later in the step).
   std::vector<double>& T = pts.work;
   const double pi2_dt_over_h2 = M_PI * M_PI * dt / (flux.cell_size * flux.cell_size);
   bins.scatter([&](std::size_t p) {  // 1.
-    T[p] = thermal.temperature(pts.material_J(p), pts.thermal_energy(p));
-    const double alpha = flux.beta * flux.cell_size * pts.q[p] / (pts.density(p) * flux.sound_speed);
+    const auto b = static_cast<std::size_t>(pts.body[p]);
+    T[p] = thermal.energy_temperature(pts, p);
+    const double alpha = flux.beta * flux.cell_size * pts.q[p] / (pts.density(p) * flux.sound_speed[b]);
     const double r = -std::expm1(-alpha * pi2_dt_over_h2);
     // A point in a bad state (a NaN the step will report) gives its nodes nothing, so the report
     // names it and not its neighbours.
     if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
-    const double mr = pts.m[p] * r, mT = pts.m[p] * T[p];
+    const double C = pts.m[p] * capacity[b], Cr = C * r, CT = C * T[p];
     for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
-      flux.node_rate[i] += N * mr;
-      flux.node_temperature[i] += N * mT;
+      flux.node_rate[i] += N * Cr;
+      flux.node_temperature[i] += N * CT;
+      if (two) flux.node_capacity[i] += N * C;
     });
-  }, [&] { halo.between_colours(flux.node_rate, flux.node_temperature); },
-     [&] { halo.after_colours(flux.node_rate, flux.node_temperature); });
-  if (plane) {
+  }, [&] {
+    halo.between_colours(flux.node_rate, flux.node_temperature);
+    if (two) halo.between_colours(flux.node_capacity);
+  }, [&] {
+    halo.after_colours(flux.node_rate, flux.node_temperature);
+    if (two) halo.after_colours(flux.node_capacity);
+  });
+  if (plane) {  // a symmetry plane has one material on both sides (scene.cpp)
     plane->fold_scalar(g, flux.node_rate, rows);
     plane->fold_scalar(g, flux.node_temperature, rows);
   }
+  const std::vector<double>& node_C = two ? flux.node_capacity : g.m;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = first; i < last; ++i) {
-    const double inv_m = g.m[i] > 0.0 ? 1.0 / g.m[i] : 0.0;
+    const double inv_m = node_C[i] > 0.0 ? 1.0 / node_C[i] : 0.0;
     flux.node_rate[i] *= inv_m;
     flux.node_temperature[i] *= inv_m;
   }
@@ -91,7 +113,7 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
     for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
       heat += N * flux.node_rate[i] * (flux.node_temperature[i] - T[p]);
     });
-    pts.E[p] += flux.specific_heat * heat;
+    pts.E[p] += flux.specific_heat[static_cast<std::size_t>(pts.body[p])] * heat;
   }
 }
 

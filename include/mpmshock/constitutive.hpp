@@ -133,8 +133,9 @@ struct StressUpdateResult {
 template <int D, class Eos, class Strength, class Viscosity, class Failure>
 StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const Model& model, double dt,
                                      const double* volume_rate) {
-  const Eos& eos = std::get<Eos>(model.eos);
-  const Strength& strength = std::get<Strength>(model.strength);
+  // Each body's constants (one material: the same twice); a point takes its body's.
+  const Eos* eos_of[2] = {&std::get<Eos>(model.eos[0]), &std::get<Eos>(model.eos[1])};
+  const Strength* strength_of[2] = {&std::get<Strength>(model.strength[0]), &std::get<Strength>(model.strength[1])};
   const Viscosity& viscosity = std::get<Viscosity>(model.viscosity);
   const Failure& failure = std::get<Failure>(model.failure);
   double max_signal = 0.0;
@@ -164,8 +165,9 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
       if (stores) st.E_stored = pts.E_stored[p];
       if (heats) st.plastic_heat = pts.plastic_heat[p];
     }
+    const auto b = static_cast<std::size_t>(pts.body[p]);
     const double signal =
-        update_point<D>(st, eos, strength, viscosity, model.cell_size, dt, failure, model.taylor_quinney);
+        update_point<D>(st, *eos_of[b], *strength_of[b], viscosity, model.cell_size, dt, failure, model.taylor_quinney);
     pts.F[p] = st.F;
     pts.E[p] = st.E;
     pts.P[p] = st.P;

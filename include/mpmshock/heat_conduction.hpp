@@ -54,7 +54,7 @@ struct HeatConduction {
 // `plane`: the symmetry plane (symmetry = on), or null.
 template <int D, class Shape>
 void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
-                  const StencilStore<D>& store, const Halo<D>& halo, const HugoniotTemperature& thermal,
+                  const StencilStore<D>& store, const Halo<D>& halo, const BodyTemperatures& thermal,
                   HeatConduction& h, const SymmetryPlane<D>* plane, double dt) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();  // P2G's, of the same x and F

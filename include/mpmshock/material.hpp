@@ -2,6 +2,9 @@
 // (E = 69 GPa, not MPa).
 #pragma once
 
+#include <string>
+#include <vector>
+
 namespace mpmshock {
 
 struct Material {
@@ -34,5 +37,21 @@ struct Material {
     return youngs_modulus * tangent_modulus / (youngs_modulus - tangent_modulus);
   }
 };
+
+// Whether two materials have every constant equal.
+bool same_constants(const Material& a, const Material& b);
+
+// A material of the built-in library (material_library.cpp): its name as scenes write it
+// (flyer_material = copper), its constants, and where they come from.
+struct LibraryMaterial {
+  std::string name;
+  Material constants;
+  std::string source;
+};
+
+// The built-in materials, aluminium first (the defaults of the bare material keys).
+const std::vector<LibraryMaterial>& material_library();
+// The library's material of that name, or null.
+const LibraryMaterial* find_library_material(const std::string& name);
 
 }  // namespace mpmshock

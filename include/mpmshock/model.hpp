@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <optional>
 #include <variant>
 
@@ -24,8 +25,12 @@ using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
 using FailureLaw = std::variant<NoFailure, Spall>;
 using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape>;
 
-// The strength law a scene calls for, and what it stores per point.
-StrengthLaw strength_of(const Scene& s);
+// The strength law a scene calls for in a material, and what it stores per point; `back_stress`:
+// the kinematic form even for isotropic hardening (when the other body needs it, so that both
+// bodies' laws are one type).
+StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress = false);
+// Whether either body's material hardens kinematically (hardening_beta < 1): then both store a back stress.
+bool kinematic_hardening(const Scene& s);
 // The Lindemann melt curve of a scene (thermal_softening.hpp).
 MeltCurve melt_curve_of(const Scene& s);
 inline bool has_stress(const StrengthLaw& law) { return !std::holds_alternative<NoStrength>(law); }
@@ -35,11 +40,13 @@ inline bool has_back_stress(const StrengthLaw& law) {
 
 struct Model {
   ShapeChoice shape;
-  EquationOfState eos;
-  StrengthLaw strength;
+  // The laws of each body's material, by Body (flyer, target); both bodies' are of one type each, so
+  // the kernels are instantiated once and pick a point's constants by its body.
+  std::array<EquationOfState, 2> eos;
+  std::array<StrengthLaw, 2> strength;
   ViscosityLaw viscosity;
   FailureLaw failure;
-  std::optional<HugoniotTemperature> thermal;  // the paper's temperature model (thermal = on)
+  std::optional<BodyTemperatures> thermal;  // the temperature models of the bodies (thermal = on)
   UpdateScheme scheme;
   double flip_fraction;  // 1: pure FLIP
   double taylor_quinney;  // share of plastic work that becomes heat
@@ -55,13 +62,13 @@ struct Model {
 
   explicit Model(const Scene& s);
 
-  // The smallest J = V/V0 the equation of state admits.
-  double limiting_compression() const;
+  // The smallest J = V/V0 a body's equation of state admits.
+  double limiting_compression(Body b) const;
   // The smallest J its fit describes (eos.hpp); below it the state is an extrapolation.
-  double eos_fit_limit() const;
-  // The shear modulus G the longitudinal sound speed sees; 0 without strength.
-  double shear_modulus() const;
-  bool has_strength() const { return has_stress(strength); }
+  double eos_fit_limit(Body b) const;
+  // The shear modulus G a body's longitudinal sound speed sees; 0 without strength.
+  double shear_modulus(Body b) const;
+  bool has_strength() const { return has_stress(strength[0]); }
   bool has_failure() const { return std::holds_alternative<Spall>(failure); }
   bool conducts_heat() const { return conductivity > 0.0; }
   // The time step the physics allows: cfl h over the fastest signal, and with conduction the

@@ -46,7 +46,7 @@ class Probes {
   // as the mirror of the target point it is the image of.
   // On MPI ranks each rank passes its own points (in id order) and rank 0 the file; the means are
   // over every rank's.
-  void write_rows(std::FILE* out, double time, const Particles<D>& p, const HugoniotTemperature* thermal,
+  void write_rows(std::FILE* out, double time, const Particles<D>& p, const BodyTemperatures* thermal,
                   const MirrorImage<D>& mirror, const Comm& comm = Comm::world()) const;
 
  private:

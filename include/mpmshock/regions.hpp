@@ -43,7 +43,7 @@ struct RegionStats {
 // (exact_sum.hpp): the same bits on any number of threads and ranks.
 template <int D>
 std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector<RegionSpec>& regions,
-                                        const HugoniotTemperature* thermal, double cross_section,
+                                        const BodyTemperatures* thermal, double cross_section,
                                         const Comm& comm = Comm::world());
 
 // Squared rotation |curl v|^2 of a velocity gradient (the paper's Rot^2).

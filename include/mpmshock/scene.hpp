@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -69,7 +70,12 @@ struct Scene {
 
   // Impact
   double velocity = 1000.0;
+  // Each body's speed toward the impact plane y = 0 (the flyer moves up, the target down); NaN until
+  // parsed: automatic, `velocity` (the symmetric frame). The laboratory frame: target_velocity = 0.
+  double flyer_velocity = std::numeric_limits<double>::quiet_NaN();
+  double target_velocity = std::numeric_limits<double>::quiet_NaN();
   double porosity = 1.03;
+  double flyer_porosity = std::numeric_limits<double>::quiet_NaN();  // NaN until parsed: automatic, porosity
   double void_radius = 50e-6;
   double void_radius_spread = 0.0;
   double void_min_gap = 0.0;
@@ -119,7 +125,11 @@ struct Scene {
   std::int64_t snapshot_compression = 0;
   bool snapshot_grid = false;
 
-  Material material;
+  Material material;  // the bare material keys: the material named "scene"
+  // The materials a body may name: the library's (material_library.cpp), with the scene's
+  // material.NAME.KEY values, and new ones those keys define.
+  std::map<std::string, Material> materials;
+  std::string flyer_material = "scene", target_material = "scene";
   Effects effects;
   std::vector<RegionSpec> regions;  // the paper's six unless the scene names its own
   std::vector<ProbeSpec> probes;    // none unless the scene names some
@@ -132,6 +142,14 @@ struct Scene {
     return it != origin.end() ? it->second : source + " (default value)";
   }
 
+  // The material of a body: the bare keys' ("scene") or a named one.
+  const Material& material_of(bool flyer) const;
+  // Both bodies of one material (the same constants, whatever their names).
+  bool one_material() const;
+  // The flyer's voids are the target's mirror image (flyer_mirror = on, both bodies equally porous).
+  bool mirrors_flyer() const;
+  // The faster body's speed toward the impact plane.
+  double fastest_body_speed() const;
   // Material-point spacing h / ppc.
   // Points carry their plastic heat W_p when some output reports the paper's temperature T_H + W_p/c_v.
   bool tracks_plastic_heat() const { return temperature_model == TemperatureModel::paper || paper_temperature; }
@@ -179,6 +197,9 @@ std::string resolved_scene(const Scene& scene);
 
 // The documentation table of all keys (markdown), as in the README.
 std::string key_reference_markdown();
+// The built-in materials (mpmshock --materials): each one's source and every constant as the
+// material.NAME.KEY line a scene would write.
+std::string material_library_text();
 
 // Why the flyer is not the mirror image of the target about y = 0 (its height, its own voids), or
 // "" when it is: the condition for symmetry = on.

@@ -55,13 +55,13 @@ struct Kernels {
                              VolumetricSmoothing&);
   // The artificial heat flux, or null when the scene has none.
   void (*heat_flux)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
-                    const Halo<D>&, const HugoniotTemperature&, ArtificialHeatFlux&, const SymmetryPlane<D>*, double dt);
+                    const Halo<D>&, const BodyTemperatures&, ArtificialHeatFlux&, const SymmetryPlane<D>*, double dt);
   // Spall's neighbourhood criterion (spall_neighbourhood.hpp), or null when the scene has none.
   void (*open_in_tension)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
                           const Halo<D>&, const SymmetryPlane<D>*, const Spall&, std::vector<double>& node_tension);
   // Heat conduction, or null when the scene has none.
   void (*conduct)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
-                  const Halo<D>&, const HugoniotTemperature&, HeatConduction&, const SymmetryPlane<D>*, double dt);
+                  const Halo<D>&, const BodyTemperatures&, HeatConduction&, const SymmetryPlane<D>*, double dt);
 };
 
 // Where the integrator stands: all it needs, besides the points, to take the next step.

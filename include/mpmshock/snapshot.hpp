@@ -48,7 +48,7 @@ struct SnapshotOptions {
 // in chunks of rows gathered from all (no rank holds every point). Throws std::runtime_error naming
 // the path (AgreedIoError, on every rank, with several ranks).
 template <int D>
-void write_snapshot(const std::string& path, const Particles<D>& p, const HugoniotTemperature* thermal,
+void write_snapshot(const std::string& path, const Particles<D>& p, const BodyTemperatures* thermal,
                     const RunState& run, const SnapshotOptions<D>& options);
 
 template <int D>

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -83,6 +84,40 @@ class HugoniotTemperature {
   MeltCurve melt_;
   double latent_heat_ = 0.0;
   std::vector<double> table_;  // table_[k] = T_H(1 - k dJ)
+};
+
+// The temperature models of the two bodies, each of its own material (flyer_material,
+// target_material): a point's temperature is its body's.
+class BodyTemperatures {
+ public:
+  BodyTemperatures(const Material& flyer, const Material& target, TemperatureModel model = TemperatureModel::energy,
+                   bool report_paper = false)
+      : by_body_{HugoniotTemperature(flyer, model, report_paper),
+                 same_constants(flyer, target) ? HugoniotTemperature() : HugoniotTemperature(target, model, report_paper)} {
+    if (same_constants(flyer, target)) by_body_[1] = by_body_[0];
+  }
+
+  const HugoniotTemperature& of_body(Body b) const { return by_body_[static_cast<std::size_t>(b)]; }
+
+  // The temperature of point q by the scene's model.
+  template <int D>
+  double of_point(const Particles<D>& p, std::size_t q) const { return of_body(p.body[q]).of_point(p, q); }
+  // The energy model's temperature of point q, which the heat flux and the 0 K check read.
+  template <int D>
+  double energy_temperature(const Particles<D>& p, std::size_t q) const {
+    return of_body(p.body[q]).temperature(p.material_J(q), p.thermal_energy(q));
+  }
+  bool reports_paper_temperature() const { return by_body_[0].reports_paper_temperature(); }
+  template <int D>
+  double paper_of_point(const Particles<D>& p, std::size_t q) const { return of_body(p.body[q]).paper_of_point(p, q); }
+
+  // Melting, of one material (scene.cpp refuses thermal_softening with two).
+  void set_melting(const MeltCurve& melt, double latent_heat) {
+    for (HugoniotTemperature& t : by_body_) t.set_melting(melt, latent_heat);
+  }
+
+ private:
+  std::array<HugoniotTemperature, 2> by_body_;
 };
 
 }  // namespace mpmshock

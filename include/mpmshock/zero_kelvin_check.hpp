@@ -14,20 +14,20 @@ namespace mpmshock {
 template <int D>
 class ZeroKelvinCheck final : public StepEffect<D> {
  public:
-  explicit ZeroKelvinCheck(const HugoniotTemperature& thermal) : thermal_(thermal) {}
+  explicit ZeroKelvinCheck(const BodyTemperatures& thermal) : thermal_(thermal) {}
   const char* name() const override { return "0 K check"; }
 
   StepStatus at_sample(const Particles<D>& pts) override {
     std::size_t first = ~std::size_t{0};
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(min : first)
     for (std::size_t p = 0; p < pts.size(); ++p)
-      if (!(thermal_.temperature(pts.material_J(p), pts.thermal_energy(p)) > 0.0)) first = p < first ? p : first;
+      if (!(thermal_.energy_temperature(pts, p) > 0.0)) first = p < first ? p : first;
     if (first == ~std::size_t{0}) return {};
     return {StepStatus::Code::below_zero_kelvin, first};
   }
 
  private:
-  const HugoniotTemperature& thermal_;
+  const BodyTemperatures& thermal_;
 };
 
 }  // namespace mpmshock

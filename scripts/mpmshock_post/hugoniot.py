@@ -46,11 +46,14 @@ class Material:
     initial_temperature: float   # T0 [K]
 
     @classmethod
-    def from_scene(cls, scene):
+    def from_scene(cls, scene, body="target"):
         """From a mapping of scene keys to SI floats: a run's resolved scene (reader.Run(...).scene)
-        or resolve.default_scene()."""
+        or resolve.default_scene(); the material of `body` ("target" or "flyer"): the bare keys',
+        or the material.NAME.KEY values of the material it names."""
+        name = scene.get(f"{body}_material", "scene")
+        prefix = "" if name == "scene" else f"material.{name}."
         try:
-            return cls(**{name: float(scene[name]) for name in cls.__dataclass_fields__})
+            return cls(**{field: float(scene[prefix + field]) for field in cls.__dataclass_fields__})
         except KeyError as e:
             raise PostError(f"the scene has no key {e}, which the shocked state needs") from None
 

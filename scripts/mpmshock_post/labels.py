@@ -13,6 +13,8 @@ _DISPLAY_UNITS = {"m": (1e6, "µm"), "s": (1e9, "ns"), "Pa": (1e-9, "GPa")}
 _NOT_THE_CASE = ("output_dir", "sample_interval", "snapshot_interval", "probe_interval", "grid_margin")
 _NOT_THE_CASE_PREFIXES = ("region.", "probe.", "snapshot_")
 _MOST_KEYS_IN_A_LABEL = 3
+# Keys whose automatic value is another key's: named only where some run sets them apart.
+_FOLLOWS = {"flyer_velocity": "velocity", "target_velocity": "velocity", "flyer_porosity": "porosity"}
 # Keys that describe the voids: they say nothing about a solid run (porosity 1, or no voids laid out).
 _VOID_KEYS = ("void_radius", "void_radius_spread", "void_min_gap", "void_overlap", "seed")
 
@@ -48,6 +50,12 @@ def case_label(scene, void_count=None):
         if key == "porosity" and solid and float(scene[key]) > 1.0:
             text += " (no voids)"
         parts.append(text)
+    # Two materials, the laboratory frame (issue 29): the flyer's and target's, as the scene names them.
+    flyer, target = scene.get("flyer_material", "scene"), scene.get("target_material", "scene")
+    if flyer != target:
+        parts.append(f"{flyer} on {target}".replace("scene", "the scene's material"))
+    if "target_velocity" in scene and scene.get("target_velocity") != scene.get("velocity"):
+        parts.append(f"flyer {float(scene['flyer_velocity']):g} m/s, target {0.0 - float(scene['target_velocity']):g} m/s")
     return ", ".join(parts)
 
 
@@ -103,7 +111,8 @@ def run_labels(runs):
     if len(runs) == 1:
         return [run_case_label(runs[0]) or runs[0].name]
     common = [key for key in runs[0].scene if _names_the_case(key) and all(key in run.scene for run in runs)]
-    differing = [key for key in common if len({repr(run.scene[key]) for run in runs}) > 1]
+    differing = [key for key in common if len({repr(run.scene[key]) for run in runs}) > 1
+                 and not all(run.scene.get(key) == run.scene.get(_FOLLOWS.get(key)) for run in runs)]
     differing.sort(key=lambda key: key not in _PAPER_KEYS)  # stable: file order otherwise
     if not differing:
         return [run.name for run in runs]

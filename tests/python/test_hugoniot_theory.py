@@ -134,3 +134,19 @@ def test_bad_input(material):
         hugoniot.porous_shock(1000.0, 0.9, material)
     with pytest.raises(PostError, match="velocity"):
         hugoniot.porous_shock(0.0, 1.1, material)
+
+
+def test_material_of_a_body_that_names_one():
+    """A body that names a material (target_material = copper) takes its material.NAME.KEY values,
+    as scene.txt lists them; one that does not, the bare keys'."""
+    scene = {"target_material": "copper", "flyer_material": "scene", "density": 2700.0, "sound_speed": 5350.0,
+             "hugoniot_slope": 1.34, "gruneisen_gamma": 1.96, "specific_heat": 880.0, "initial_temperature": 300.0,
+             "material.copper.density": 8930.0, "material.copper.sound_speed": 3940.0,
+             "material.copper.hugoniot_slope": 1.489, "material.copper.gruneisen_gamma": 2.02,
+             "material.copper.specific_heat": 383.0, "material.copper.initial_temperature": 300.0}
+    assert hugoniot.Material.from_scene(scene).density == 8930.0
+    assert hugoniot.Material.from_scene(scene).hugoniot_slope == 1.489
+    assert hugoniot.Material.from_scene(scene, "flyer").density == 2700.0
+    with pytest.raises(PostError, match="material.copper.specific_heat"):
+        del scene["material.copper.specific_heat"]
+        hugoniot.Material.from_scene(scene)
