@@ -473,7 +473,7 @@ int main(int argc, char** argv) {
   InitialState<2> initial = build_initial_state<2>(scene);
   Simulation<2> sim(scene, initial.grid, std::move(initial.particles));
   while (sim.time() < 100e-9) sim.step(sim.stable_time_step());
-  const BodyTemperatures thermal(scene.material, scene.material);
+  const BodyTemperatures thermal(scene.material, scene.material, scene.material);
   auto time_samples = [&](const BodyTemperatures* t) {
     double best = 1e9;
     for (int r = 0; r < 5; ++r) {

@@ -41,10 +41,14 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
         << " mm, periodic in x and z, " << speeds.str() << ")\n";
   body(st.target);
   body(st.flyer);
+  if (s.has_window())
+    out << "  window: y " << s.target_height * 1e3 << " .. " << (s.target_height + s.window_height) * 1e3 << " mm, "
+        << st.window_points << " material points of " << s.window_material << " (" << s.material_of(Body::window).density
+        << " kg/m3) on the target's free surface\n";
   if (s.flyer_material != "scene" || s.target_material != "scene") {
     auto named = [](const std::string& n) { return n == "scene" ? std::string("the scene's material keys") : n; };
-    out << "  materials: target " << named(s.target_material) << " (" << s.material_of(false).density
-        << " kg/m3), flyer " << named(s.flyer_material) << " (" << s.material_of(true).density << " kg/m3)\n";
+    out << "  materials: target " << named(s.target_material) << " (" << s.material_of(Body::target).density
+        << " kg/m3), flyer " << named(s.flyer_material) << " (" << s.material_of(Body::flyer).density << " kg/m3)\n";
   }
   if (s.flyer_porosity == s.porosity)
     out << "  porosity requested " << s.porosity << ", achieved " << porosity << " (relative error "
@@ -54,7 +58,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
         << st.target.porosity() << ", " << st.flyer.porosity() << "\n";
   out << "grid: " << g.nx << (D == 3 ? " x " + std::to_string(g.nz) : std::string()) << " x " << g.ny - 1 << " cells of " << g.h * 1e6 << " um, y " << g.y_min * 1e3 << " .. "
       << g.y_max() * 1e3 << " mm, " << g.nodes() << " nodes\n";
-  const std::size_t whole = st.target.material_points + st.flyer.material_points, simulated = st.particles.size();
+  const std::size_t whole = st.target.material_points + st.flyer.material_points + st.window_points,
+                    simulated = st.particles.size();
   out << "material points: " << whole << " (" << s.particles_per_cell << " x " << s.particles_per_cell;
   if (D == 3) out << " x " << s.particles_per_cell;
   out << " per cell)\n";
@@ -96,7 +101,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
          << s.latent_heat << " J/kg)";
     on.push_back(melt.str());
   }
-  if (s.material_of(true).bound_expansion || s.material_of(false).bound_expansion)
+  if (s.material_of(Body::flyer).bound_expansion || s.material_of(Body::target).bound_expansion)
     on.push_back("bounded expansion (Rose binding curve)");
   if (s.effects.artificial_viscosity) {
     std::ostringstream av;

@@ -42,17 +42,21 @@ StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
 }
 
 MeltCurve melt_curve_of(const Scene& s) {
-  return {s.melt_temperature, s.lindemann_a, s.material_of(false).gruneisen_gamma};  // one material (scene.cpp)
+  return {s.melt_temperature, s.lindemann_a, s.material_of(Body::target).gruneisen_gamma};  // one material (scene.cpp)
 }
 
 bool kinematic_hardening(const Scene& s) {
-  return s.material_of(true).hardening_beta != 1.0 || s.material_of(false).hardening_beta != 1.0;
+  return s.material_of(Body::flyer).hardening_beta != 1.0 || s.material_of(Body::target).hardening_beta != 1.0 ||
+         (s.has_window() && s.material_of(Body::window).hardening_beta != 1.0);
 }
 
 Model::Model(const Scene& s)
     : shape(shape_of(s)),
-      eos{MieGruneisen(s.material_of(true)), MieGruneisen(s.material_of(false))},
-      strength{strength_of(s, s.material_of(true), kinematic_hardening(s)), strength_of(s, s.material_of(false), kinematic_hardening(s))},
+      eos{MieGruneisen(s.material_of(Body::flyer)), MieGruneisen(s.material_of(Body::target)),
+          MieGruneisen(s.material_of(Body::window))},
+      strength{strength_of(s, s.material_of(Body::flyer), kinematic_hardening(s)),
+               strength_of(s, s.material_of(Body::target), kinematic_hardening(s)),
+               strength_of(s, s.material_of(Body::window), kinematic_hardening(s))},
       viscosity(viscosity_of(s)),
       failure(s.effects.spall ? FailureLaw(Spall{s.spall_strength, s.spall_void_fraction,
                                                          s.spall_criterion == SpallCriterion::neighbourhood, s.spall_point_ceiling}) : FailureLaw(NoFailure{})),
@@ -60,14 +64,17 @@ Model::Model(const Scene& s)
       // No material point outruns several times the impact speed plus the sound speed; a point
       // that does is a blow-up.
       speed_limit(10.0 * (2.0 * s.fastest_body_speed() +
-                          std::max(s.material_of(true).sound_speed, s.material_of(false).sound_speed))) {
-  if (s.effects.thermal) thermal.emplace(s.material_of(true), s.material_of(false), s.temperature_model, s.paper_temperature);
+                          std::max({s.material_of(Body::flyer).sound_speed, s.material_of(Body::target).sound_speed,
+                                    s.material_of(Body::window).sound_speed}))) {
+  if (s.effects.thermal)
+    thermal.emplace(s.material_of(Body::flyer), s.material_of(Body::target), s.material_of(Body::window),
+                    s.temperature_model, s.paper_temperature);
   if (thermal && s.effects.thermal_softening) thermal->set_melting(melt_curve_of(s), s.latent_heat);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;
   volumetric_smoothing = s.volumetric_smoothing;
   if (s.effects.thermal && s.effects.artificial_viscosity) heat_flux_beta = s.av_heat_flux;
-  const Material& one = s.material_of(false);  // conduction needs one material (scene.cpp)
+  const Material& one = s.material_of(Body::target);  // conduction needs one material (scene.cpp)
   if (s.effects.heat_conduction && one.thermal_conductivity > 0.0) {
     conductivity = one.thermal_conductivity;
     diffusivity = conductivity / (one.density * one.specific_heat);

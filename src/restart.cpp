@@ -138,6 +138,7 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
           " lattice points) does not match its scene (" + std::to_string(lattice[b]) + ")");
     material += bodies[b]->material_points;
   }
+  material += across * static_cast<std::size_t>(std::lround(scene.window_height / a));  // the window: solid
   if (r.total_points != material)
     bad("it holds " + std::to_string(r.total_points) + " points, its bodies " + std::to_string(material));
 

@@ -301,6 +301,13 @@ const std::vector<Key>& keys() {
                      FIELD(flyer_material)));
     k.push_back(text("target_material", "scene", "the target's material, as flyer_material",
                      FIELD(target_material)));
+    k.push_back(quantity("window_height", D::length, non_negative(), "0 m",
+                         "a window of window_material bonded to the target's free surface, this thick (solid, moving "
+                         "with the target); probe.NAME = surface then follows the sample-window interface, as a "
+                         "VISAR through the window; 0: none",
+                         FIELD(window_height)));
+    k.push_back(text("window_material", "lif", "the window's material, as flyer_material (with window_height > 0)",
+                     FIELD(window_material)));
     k.push_back(quantity("void_radius", D::length, positive(), "50 um", "mean void radius",
                          FIELD(void_radius)));
     k.push_back(quantity("void_radius_spread", D::length, non_negative(), "0 m",
@@ -856,7 +863,8 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     fail("heat_conduction", "needs thermal = on (conduction moves heat by temperature differences)");
   // The bodies' materials: each named one must exist, and its constants fit together.
   bool materials_known = true;
-  for (const auto& [key, name] : {std::pair{"flyer_material", s.flyer_material}, std::pair{"target_material", s.target_material}}) {
+  for (const auto& [key, name] : {std::pair{"flyer_material", s.flyer_material}, std::pair{"target_material", s.target_material},
+                                   std::pair{"window_material", s.window_material}}) {
     if (name == "scene" || s.materials.count(name)) continue;
     std::string list;
     for (const auto& m : s.materials) list += ", " + m.first;
@@ -872,12 +880,19 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   if (materials_known && !s.one_material()) {
     // The laws below read one set of constants for every point (per-material versions: issue 29).
     if (s.effects.heat_conduction)
-      fail("heat_conduction", "needs both bodies of one material (flyer_material " + s.flyer_material +
-                                  ", target_material " + s.target_material + "); conduction between materials is not implemented");
+      fail("heat_conduction", "needs every body of one material (flyer_material " + s.flyer_material +
+                                  ", target_material " + s.target_material +
+                                  (s.has_window() ? ", window_material " + s.window_material : std::string()) +
+                                  "); conduction between materials is not implemented");
     if (s.effects.thermal_softening)
-      fail("thermal_softening", "needs both bodies of one material (flyer_material " + s.flyer_material +
-                                    ", target_material " + s.target_material + "): its melt curve and constants are one material's");
+      fail("thermal_softening", "needs every body of one material (flyer_material " + s.flyer_material +
+                                    ", target_material " + s.target_material +
+                                    (s.has_window() ? ", window_material " + s.window_material : std::string()) +
+                                    "): its melt curve and constants are one material's");
   }
+  if (s.has_window() && !is_multiple(s.window_height, a))
+    fail("window_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
+                              format_number(a) + " m)");
   if (!(s.flyer_velocity + s.target_velocity > 0.0))
     fail("flyer_velocity", "the bodies do not approach each other: flyer_velocity + target_velocity must be > 0");
   if (s.porosity > 1.0 || s.flyer_porosity > 1.0) {
@@ -908,10 +923,11 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     if (!(p.x >= 0.0 && p.x <= s.width))
       fail("probe." + p.name, "X = " + format_number(p.x) + " m lies outside the column (0 .. width = " +
                                   format_number(s.width) + " m; bare numbers are metres)");
-    if (!(p.y >= -s.flyer_height - s.cell_size && p.y <= s.target_height + s.cell_size))
+    if (!(p.y >= -s.flyer_height - s.cell_size && p.y <= s.target_height + s.window_height + s.cell_size))
       fail("probe." + p.name, "Y = " + format_number(p.y) + " m lies outside the bodies (-flyer_height = " +
-                                  format_number(-s.flyer_height) + " m .. target_height = " +
-                                  format_number(s.target_height) + " m; bare numbers are metres)");
+                                  format_number(-s.flyer_height) + " m .. target_height" +
+                                  (s.has_window() ? " + window_height" : "") + " = " +
+                                  format_number(s.target_height + s.window_height) + " m; bare numbers are metres)");
     if (s.dimension == 3 && p.z > s.derived_depth())
       fail("probe." + p.name, "Z = " + format_number(p.z) + " m lies outside the column (0 .. depth = " +
                                   format_number(s.derived_depth()) + " m; bare numbers are metres)");
@@ -919,18 +935,18 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   if (s.grid_margin >= 0.0 && s.grid_margin < 2.0 * s.cell_size)
     fail("grid_margin", "must be at least two cells (or 'auto')");
   // Sizes that would not fit in memory are refused here, before anything is allocated.
-  const double points = (s.target_height + s.flyer_height) / a * s.points_across();
+  const double points = (s.target_height + s.flyer_height + s.window_height) / a * s.points_across();
   if (!(points <= 2.0e9))
     fail("cell_size", "the scene would need " + format_number(std::round(points)) +
                           " material points; at most 2e9 are supported");
   // The first time step sees the longitudinal sound speed (bulk plus shear with strength) and the
   // impact speed; shocked material is faster still, so this is a floor on the step count.
   double signal = 0.0;
-  for (const bool flyer : {true, false}) {
-    const Material& mat = materials_known ? s.material_of(flyer) : s.material;
+  for (const Body b : {Body::flyer, Body::target, Body::window}) {
+    const Material& mat = materials_known ? s.material_of(b) : s.material;
     const double cL2 = mat.sound_speed * mat.sound_speed +
                        (s.effects.plasticity ? (4.0 / 3.0) * mat.shear_modulus() / mat.density : 0.0);
-    signal = std::max(signal, std::sqrt(cL2) + (flyer ? s.flyer_velocity : s.target_velocity));
+    signal = std::max(signal, std::sqrt(cL2) + (b == Body::flyer ? s.flyer_velocity : s.target_velocity));
   }
   const double steps_estimate = s.end_time * signal / (s.cfl * s.cell_size);
   if (!(steps_estimate <= 1e12))
@@ -949,8 +965,10 @@ std::string asymmetry_of(const Scene& s) {
   if (s.flyer_porosity != s.porosity) return "flyer_porosity differs from porosity";
   if (s.porosity > 1.0 && !s.flyer_mirror) return "flyer_mirror = off gives the flyer its own voids";
   if (s.flyer_velocity != s.target_velocity) return "flyer_velocity differs from target_velocity";
+  if (s.has_window()) return "the target has a window, the flyer none";
   if ((s.flyer_material == "scene" || s.materials.count(s.flyer_material)) &&
-      (s.target_material == "scene" || s.materials.count(s.target_material)) && !s.one_material())
+      (s.target_material == "scene" || s.materials.count(s.target_material)) &&
+      !same_constants(s.material_of(Body::flyer), s.material_of(Body::target)))
     return "the flyer's material differs from the target's";
   return "";
 }
@@ -965,12 +983,19 @@ bool same_constants(const Material& a, const Material& b) {
          a.bound_expansion == b.bound_expansion && a.fit_particle_velocity == b.fit_particle_velocity;
 }
 
-const Material& Scene::material_of(bool flyer) const {
-  const std::string& name = flyer ? flyer_material : target_material;
+const std::string& Scene::material_name(Body b) const {
+  return b == Body::flyer ? flyer_material : b == Body::target ? target_material : window_material;
+}
+
+const Material& Scene::material_of(Body b) const {
+  const std::string& name = material_name(b);
   return name == "scene" ? material : materials.at(name);
 }
 
-bool Scene::one_material() const { return same_constants(material_of(true), material_of(false)); }
+bool Scene::one_material() const {
+  return same_constants(material_of(Body::flyer), material_of(Body::target)) &&
+         (!has_window() || same_constants(material_of(Body::window), material_of(Body::target)));
+}
 
 bool Scene::mirrors_flyer() const { return flyer_mirror && porosity > 1.0 && flyer_porosity == porosity; }
 
@@ -1128,8 +1153,11 @@ std::string resolved_scene(const Scene& scene) {
   // The named materials the bodies use, every constant: a run reads back as it ran, whatever the
   // library holds later.
   std::vector<std::string> named;
-  for (const std::string& name : {scene.target_material, scene.flyer_material})
+  for (const Body b : {Body::target, Body::flyer, Body::window}) {
+    const std::string& name = scene.material_name(b);
+    if (b == Body::window && !scene.has_window()) continue;
     if (name != "scene" && std::find(named.begin(), named.end(), name) == named.end()) named.push_back(name);
+  }
   for (const std::string& name : named) {
     Scene holder;  // the material keys read Scene::material
     holder.material = scene.materials.at(name);

@@ -24,7 +24,7 @@ GridGeometry<D> build_grid_geometry(const Scene& s) {
   const double margin = s.derived_grid_margin();
   // Node row `below` sits on the impact plane y = 0, so the plane is a grid line.
   const int below = static_cast<int>(std::ceil((s.flyer_height + margin) / s.cell_size - 1e-9));
-  const int above = static_cast<int>(std::ceil((s.target_height + margin) / s.cell_size - 1e-9));
+  const int above = static_cast<int>(std::ceil((s.target_height + s.window_height + margin) / s.cell_size - 1e-9));
   g.y_min = -below * s.cell_size;
   g.lp = 0.5 / static_cast<double>(s.particles_per_cell);  // GIMP: the point's initial half-width
   g.ny = below + above + 1;
@@ -36,7 +36,7 @@ namespace {
 // The optional per-point fields the scene's effects need.
 template <int D>
 void enable_fields(Particles<D>& p, const Scene& s) {
-  const StrengthLaw strength = strength_of(s, s.material_of(false), kinematic_hardening(s));  // both bodies' type
+  const StrengthLaw strength = strength_of(s, s.material_of(Body::target), kinematic_hardening(s));  // both bodies' type
   p.enable_strength(has_stress(strength), has_back_stress(strength));
   p.enable_failure(s.effects.spall);
   p.enable_cold_work(s.effects.plasticity && s.taylor_quinney < 1.0);
@@ -50,7 +50,7 @@ SizeEstimate estimate_size(const Scene& s) {
   SizeEstimate e;
   const double a = s.particle_spacing();
   const double across = s.points_across();
-  const double rows = std::round(s.target_height / a) + std::round(s.flyer_height / a);
+  const double rows = std::round(s.target_height / a) + std::round(s.flyer_height / a) + std::round(s.window_height / a);
   const bool mirrored = s.symmetry == Symmetry::on;  // the target alone, the flyer its mirror image
   e.points = across * (mirrored ? std::round(s.target_height / a) : rows);  // before the voids are cut: an upper bound
   const GridGeometry<D> g = build_grid_geometry<D>(s);
@@ -165,12 +165,19 @@ InitialBuilder<D>::InitialBuilder(const Scene& s) : scene_(s) {
   } catch (const VoidSeedingError& e) {
     throw SceneError(s.where("porosity") + ": key 'porosity': " + e.what());
   }
+  // The window: solid, on the target's free surface (no symmetry with it: scene.cpp).
+  window_ = target_;
+  window_.y0 = target_.y0 + target_.height();
+  window_.rows = static_cast<int>(std::lround(s.window_height / a));
+  window_voids_ = seed_voids(window_, VoidRequest{1.0, s.void_radius, 0.0, 0.0, false}, rng);
   flyer_rows_ = points_per_row(flyer_, flyer_voids_);
   target_rows_ = points_per_row(target_, target_voids_);
+  window_rows_ = points_per_row(window_, window_voids_);
   // The rows simulated, in the order their points are made: with symmetry = on the target's alone.
   if (s.symmetry != Symmetry::on)
     row_points_ = flyer_rows_;
   row_points_.insert(row_points_.end(), target_rows_.begin(), target_rows_.end());
+  row_points_.insert(row_points_.end(), window_rows_.begin(), window_rows_.end());
 }
 
 template <int D>
@@ -185,14 +192,20 @@ InitialState<D> InitialBuilder<D>::build(const std::vector<char>* keep) const {
   const bool mirrored = s.symmetry == Symmetry::on;
   std::size_t row = 0, id = 0;
   if (!mirrored) {
-    add_points(st.particles, flyer_, flyer_voids_, s.flyer_velocity, s.material_of(true).density, Body::flyer, flyer_rows_, keep,
+    add_points(st.particles, flyer_, flyer_voids_, s.flyer_velocity, s.material_of(Body::flyer).density, Body::flyer, flyer_rows_, keep,
                row, id);
     row += static_cast<std::size_t>(flyer_.rows);
     for (std::size_t c : flyer_rows_) id += c;
   }
-  add_points(st.particles, target_, target_voids_, 0.0 - s.target_velocity, s.material_of(false).density, Body::target,
-             target_rows_, keep,
-             row, id);
+  add_points(st.particles, target_, target_voids_, 0.0 - s.target_velocity, s.material_of(Body::target).density, Body::target,
+             target_rows_, keep, row, id);
+  if (s.has_window()) {  // above the target, numbered after it, moving with it
+    row += static_cast<std::size_t>(target_.rows);
+    for (std::size_t c : target_rows_) id += c;
+    add_points(st.particles, window_, window_voids_, 0.0 - s.target_velocity, s.material_of(Body::window).density,
+               Body::window, window_rows_, keep, row, id);
+  }
+  st.window_points = window_.size();
   st.target = summarize("target", target_, target_voids_);
   st.flyer = summarize("flyer", flyer_, flyer_voids_);
   if (mirrored) st.mirror = MirrorImage<D>(flyer_rows_, target_rows_);

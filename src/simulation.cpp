@@ -132,14 +132,14 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
   remember_unreached();
   heat_flux_.beta = model_.heat_flux_beta;
   heat_flux_.cell_size = model_.cell_size;
-  for (const Body b : {Body::flyer, Body::target}) {
-    const Material& mat = scene.material_of(b == Body::flyer);
+  for (const Body b : {Body::flyer, Body::target, Body::window}) {
+    const Material& mat = scene.material_of(b);
     heat_flux_.specific_heat[static_cast<std::size_t>(b)] = mat.specific_heat;
     heat_flux_.sound_speed[static_cast<std::size_t>(b)] = mat.sound_speed;
   }
   heat_flux_.one_material = scene.one_material();
   heat_.conductivity = model_.conductivity;
-  heat_.specific_heat = scene.material_of(false).specific_heat;  // conduction needs one material (scene.cpp)
+  heat_.specific_heat = scene.material_of(Body::target).specific_heat;  // conduction needs one material (scene.cpp)
   if (model_.conducts_heat())
     heat_.relaxation_time = model_.cell_size * model_.cell_size / (M_PI * M_PI * model_.diffusivity);
 }
@@ -471,7 +471,8 @@ Grid<D> Simulation<D>::gathered_grid(RowRange& rows) const {
 
 template <int D>
 std::size_t Simulation<D>::points_beyond_eos_fit() const {
-  const double J_fit[2] = {model_.eos_fit_limit(Body::flyer), model_.eos_fit_limit(Body::target)};
+  const double J_fit[kBodies] = {model_.eos_fit_limit(Body::flyer), model_.eos_fit_limit(Body::target),
+                                 model_.eos_fit_limit(Body::window)};
   std::int64_t n = 0;
 #pragma omp parallel for schedule(static) reduction(+ : n)
   for (std::size_t p = 0; p < points_.size(); ++p)

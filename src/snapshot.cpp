@@ -701,8 +701,9 @@ Restart<D> read_state(const std::string& path, const PointChooser& choose) {
     const std::vector<std::uint8_t> body = h5::read_uint8(f, "/particles/body", n, rows);
     p.body.resize(m);
     for (std::size_t q = 0; q < m; ++q) {
-      if (body[q] > 1) throw std::runtime_error("/particles/body holds " + std::to_string(body[q]) + ", not 0 or 1");
-      p.body[q] = body[q] ? Body::target : Body::flyer;
+      if (body[q] >= kBodies)
+        throw std::runtime_error("/particles/body holds " + std::to_string(body[q]) + ", not 0, 1 or 2");
+      p.body[q] = static_cast<Body>(body[q]);
     }
     unflatten(h5::read_doubles(f, "/particles/position", n, {d}, rows), p.x);
     unflatten(h5::read_doubles(f, "/particles/velocity", n, {d}, rows), p.v);

@@ -82,10 +82,10 @@ PointRange UnreachedMaterial<D>::computed(const Particles<D>& pts) const {
 template <int D>
 void UnreachedMaterial<D>::measure_signal(const Model& model, const Particles<D>& pts) {
   // Every unreached point of a body has the same state (its body's material at its speed): the
-  // signal of one of each (the first flyer point, the first unreached target point), from the rank
-  // that holds it.
+  // signal of one of each (the first flyer point, the first unreached target point, the window's
+  // last point), from the rank that holds it.
   double signal = 0.0;
-  for (const std::size_t id : {head_ > 0 ? std::size_t{0} : points_, tail_}) {
+  for (const std::size_t id : {head_ > 0 ? std::size_t{0} : points_, tail_, tail_ < points_ ? points_ - 1 : points_}) {
     const std::size_t sample = id < points_ ? index_of_id(pts, static_cast<std::uint32_t>(id)) : pts.size();
     if (sample >= pts.size()) continue;
     Particles<D> one;

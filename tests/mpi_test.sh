@@ -72,10 +72,11 @@ compare porous3d "$data/tiny_porous_3d.scene" --set probe.top=surface
 compare smoothing "$data/tiny_porous.scene" --set volumetric_smoothing=on --set av_linear=0.75 \
   --set bounded_expansion=on
 compare smoothing_whole "$data/tiny_porous.scene" --set volumetric_smoothing=on --set flyer_mirror=off
-# Two materials (issue 29): a solid copper flyer, its yield changed by a material key, on the porous
-# aluminium target at rest (the laboratory frame).
+# Three materials (issue 29): a solid copper flyer, its yield changed by a material key, on the porous
+# aluminium target at rest (the laboratory frame) with a LiF window on its far surface.
 compare materials "$data/tiny_porous.scene" --set flyer_material=copper --set flyer_porosity=1 \
-  --set target_velocity=0 --set "material.copper.yield_stress=200 MPa" --set spall=on "${probes[@]}"
+  --set target_velocity=0 --set "material.copper.yield_stress=200 MPa" --set spall=on "${probes[@]}" \
+  --set "window_height=50 um" --set window_material=lif
 
 # Restart on another number of ranks: from the middle snapshot of the 1-rank run, on 3 ranks, and
 # from the middle of a 2-rank run on 1 rank: the same files as the run straight through (probes.csv

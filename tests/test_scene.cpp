@@ -131,8 +131,8 @@ int main() {
     const Scene cu = parse_scene("flyer_material = copper\ntarget_velocity = 0\nflyer_velocity = 500 m/s\n"
                                  "material.copper.yield_stress = 0.2 GPa\nmaterial.steel.density = 7850 kg/m3\n",
                                  "m.scene");
-    CHECK(cu.material_of(true).density == 8930.0 && cu.material_of(true).yield_stress == 0.2e9);
-    CHECK(cu.material_of(false).density == 2700.0 && !cu.one_material());
+    CHECK(cu.material_of(Body::flyer).density == 8930.0 && cu.material_of(Body::flyer).yield_stress == 0.2e9);
+    CHECK(cu.material_of(Body::target).density == 2700.0 && !cu.one_material());
     CHECK(cu.materials.at("steel").density == 7850.0 && cu.materials.at("steel").sound_speed == 5350.0);
     CHECK(cu.symmetry == Symmetry::off && cu.target_velocity == 0.0 && cu.fastest_body_speed() == 500.0);
     // The resolved scene holds every constant of the named material and reads back to the same run.

@@ -43,8 +43,8 @@ namespace mpmshock {
 struct ArtificialHeatFlux {
   double beta = 0.0;                     // alpha = beta h q / (rho c0)
   double cell_size = 0.0;                // h
-  std::array<double, 2> specific_heat{};  // c_v by body
-  std::array<double, 2> sound_speed{};    // c0 by body, the scale of the viscous pressure
+  std::array<double, kBodies> specific_heat{};  // c_v by body
+  std::array<double, kBodies> sound_speed{};    // c0 by body, the scale of the viscous pressure
   bool one_material = true;               // C_p = m_p, C_i = m_i
   std::vector<double> node_rate, node_temperature;  // C_i r_i and C_i T_i, then r_i and T_i
   std::vector<double> node_capacity;                // C_i, with two materials
@@ -70,7 +70,8 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
     for (std::size_t i = first; i < last; ++i) flux.node_capacity[i] = 0.0;
     halo.zero(flux.node_capacity);
   }
-  const double capacity[2] = {1.0, flux.specific_heat[1] / flux.specific_heat[0]};  // c_v,b / c_v,flyer
+  const double capacity[kBodies] = {1.0, flux.specific_heat[1] / flux.specific_heat[0],
+                                    flux.specific_heat[2] / flux.specific_heat[0]};  // c_v,b / c_v,flyer
 
   // The step's scratch holds T_p (written again by the velocity gradient later in the step).
   std::vector<double>& T = pts.work;

@@ -133,9 +133,10 @@ struct StressUpdateResult {
 template <int D, class Eos, class Strength, class Viscosity, class Failure>
 StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const Model& model, double dt,
                                      const double* volume_rate) {
-  // Each body's constants (one material: the same twice); a point takes its body's.
-  const Eos* eos_of[2] = {&std::get<Eos>(model.eos[0]), &std::get<Eos>(model.eos[1])};
-  const Strength* strength_of[2] = {&std::get<Strength>(model.strength[0]), &std::get<Strength>(model.strength[1])};
+  // Each body's constants (one material: the same for all); a point takes its body's.
+  const Eos* eos_of[kBodies] = {&std::get<Eos>(model.eos[0]), &std::get<Eos>(model.eos[1]), &std::get<Eos>(model.eos[2])};
+  const Strength* strength_of[kBodies] = {&std::get<Strength>(model.strength[0]), &std::get<Strength>(model.strength[1]),
+                                          &std::get<Strength>(model.strength[2])};
   const Viscosity& viscosity = std::get<Viscosity>(model.viscosity);
   const Failure& failure = std::get<Failure>(model.failure);
   double max_signal = 0.0;

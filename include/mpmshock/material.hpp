@@ -2,10 +2,18 @@
 // (E = 69 GPa, not MPa).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace mpmshock {
+
+// The bodies of an impact, each of its own material: the flyer (y < 0, moving up), the target
+// (moving down) and, where a scene has one, the window bonded to the target's far surface.
+enum class Body : std::uint8_t { flyer = 0, target = 1, window = 2 };
+constexpr std::size_t kBodies = 3;
+constexpr std::size_t index_of(Body b) { return static_cast<std::size_t>(b); }
 
 struct Material {
   double density = 2700.0;               // rho0, solid reference density [kg/m3]

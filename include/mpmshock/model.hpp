@@ -40,10 +40,10 @@ inline bool has_back_stress(const StrengthLaw& law) {
 
 struct Model {
   ShapeChoice shape;
-  // The laws of each body's material, by Body (flyer, target); both bodies' are of one type each, so
-  // the kernels are instantiated once and pick a point's constants by its body.
-  std::array<EquationOfState, 2> eos;
-  std::array<StrengthLaw, 2> strength;
+  // The laws of each body's material, by Body (flyer, target, window); every body's are of one type
+  // each, so the kernels are instantiated once and pick a point's constants by its body.
+  std::array<EquationOfState, kBodies> eos;
+  std::array<StrengthLaw, kBodies> strength;
   ViscosityLaw viscosity;
   FailureLaw failure;
   std::optional<BodyTemperatures> thermal;  // the temperature models of the bodies (thermal = on)

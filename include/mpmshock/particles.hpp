@@ -20,11 +20,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpmshock/material.hpp"
 #include "mpmshock/tensor.hpp"
 
 namespace mpmshock {
-
-enum class Body : std::uint8_t { flyer = 0, target = 1 };
 
 // The points [begin, end) by storage index: those a step computes (unreached.hpp).
 struct PointRange {

@@ -129,7 +129,8 @@ struct Scene {
   // The materials a body may name: the library's (material_library.cpp), with the scene's
   // material.NAME.KEY values, and new ones those keys define.
   std::map<std::string, Material> materials;
-  std::string flyer_material = "scene", target_material = "scene";
+  std::string flyer_material = "scene", target_material = "scene", window_material = "lif";
+  double window_height = 0.0;  // [m] a window bonded to the target's free surface; 0: none
   Effects effects;
   std::vector<RegionSpec> regions;  // the paper's six unless the scene names its own
   std::vector<ProbeSpec> probes;    // none unless the scene names some
@@ -143,8 +144,10 @@ struct Scene {
   }
 
   // The material of a body: the bare keys' ("scene") or a named one.
-  const Material& material_of(bool flyer) const;
-  // Both bodies of one material (the same constants, whatever their names).
+  const Material& material_of(Body b) const;
+  const std::string& material_name(Body b) const;
+  bool has_window() const { return window_height > 0.0; }
+  // Every body of one material (the same constants, whatever their names).
   bool one_material() const;
   // The flyer's voids are the target's mirror image (flyer_mirror = on, both bodies equally porous).
   bool mirrors_flyer() const;

@@ -36,6 +36,7 @@ struct InitialState {
   Particles<D> particles;
   MirrorImage<D> mirror;
   BodySummary target, flyer;
+  std::size_t window_points = 0;  // the window's, solid (window_height > 0)
 };
 
 // The step's scratch per point besides the points' own fields: the scatter bins and the stencil
@@ -91,10 +92,10 @@ class InitialBuilder {
 
  private:
   const Scene& scene_;
-  Lattice target_, flyer_;
-  VoidLayout target_voids_, flyer_voids_;
+  Lattice target_, flyer_, window_;
+  VoidLayout target_voids_, flyer_voids_, window_voids_;  // the window's: none
   std::vector<std::size_t> row_points_;
-  std::vector<std::size_t> flyer_rows_, target_rows_;  // points per lattice row of each body
+  std::vector<std::size_t> flyer_rows_, target_rows_, window_rows_;  // points per lattice row of each body
 };
 
 }  // namespace mpmshock

@@ -86,15 +86,19 @@ class HugoniotTemperature {
   std::vector<double> table_;  // table_[k] = T_H(1 - k dJ)
 };
 
-// The temperature models of the two bodies, each of its own material (flyer_material,
-// target_material): a point's temperature is its body's.
+// The temperature models of the bodies, each of its own material (flyer_material,
+// target_material, window_material): a point's temperature is its body's.
 class BodyTemperatures {
  public:
-  BodyTemperatures(const Material& flyer, const Material& target, TemperatureModel model = TemperatureModel::energy,
-                   bool report_paper = false)
-      : by_body_{HugoniotTemperature(flyer, model, report_paper),
-                 same_constants(flyer, target) ? HugoniotTemperature() : HugoniotTemperature(target, model, report_paper)} {
-    if (same_constants(flyer, target)) by_body_[1] = by_body_[0];
+  BodyTemperatures(const Material& flyer, const Material& target, const Material& window,
+                   TemperatureModel model = TemperatureModel::energy, bool report_paper = false) {
+    // A body of the flyer's (or the target's) constants shares its table.
+    const Material* materials[kBodies] = {&flyer, &target, &window};
+    for (std::size_t b = 0; b < kBodies; ++b) {
+      std::size_t same = 0;
+      while (same < b && !same_constants(*materials[same], *materials[b])) ++same;
+      by_body_[b] = same < b ? by_body_[same] : HugoniotTemperature(*materials[b], model, report_paper);
+    }
   }
 
   const HugoniotTemperature& of_body(Body b) const { return by_body_[static_cast<std::size_t>(b)]; }
@@ -117,7 +121,7 @@ class BodyTemperatures {
   }
 
  private:
-  std::array<HugoniotTemperature, 2> by_body_;
+  std::array<HugoniotTemperature, kBodies> by_body_;
 };
 
 }  // namespace mpmshock

@@ -137,7 +137,7 @@ def build_parser():
                        "arrow spacing long)")
     field.add_argument("--window", type=_argument(_numbers(4, "window")), metavar="X0,X1,Y0,Y1",
                        help="part of the body to show, in um (default: all of it)")
-    field.add_argument("--body", choices=("all", "target", "flyer"), default="all",
+    field.add_argument("--body", choices=("all", "target", "flyer", "window"), default="all",
                        help="which body to draw (default all)")
     field.add_argument("--clim", type=_argument(_numbers(2, "clim")), metavar="LO,HI",
                        help="colour limits in display units (default: the central 99%% of the points)")

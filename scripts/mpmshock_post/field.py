@@ -26,7 +26,7 @@ from .reader import void_count
 from .style import FOOTER_LINE_IN, add_footer, resolution_lines
 from .units import LENGTH_FACTOR, TIME, quantity
 
-_BODIES = {"flyer": 0, "target": 1}
+_BODIES = {"flyer": 0, "target": 1, "window": 2}
 _MARGINS_IN = dict(left=0.9, right=1.4, bottom=0.6, top=0.15)  # room for ticks, colourbar; title and footer add theirs
 _MIN_FIGURE_WIDTH_IN = 5.0   # a narrow column still gets a figure wide enough for its title
 _TITLE_LINE_IN = 0.2         # a 10 pt title line

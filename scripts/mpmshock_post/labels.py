@@ -55,7 +55,10 @@ def case_label(scene, void_count=None):
     if flyer != target:
         parts.append(f"{flyer} on {target}".replace("scene", "the scene's material"))
     if "target_velocity" in scene and scene.get("target_velocity") != scene.get("velocity"):
-        parts.append(f"flyer {float(scene['flyer_velocity']):g} m/s, target {0.0 - float(scene['target_velocity']):g} m/s")
+        target = float(scene["target_velocity"])
+        parts.append("target at rest" if target == 0.0 else f"target {0.0 - target:g} m/s")
+    if float(scene.get("window_height", 0.0)) > 0.0:
+        parts.append(f"{scene.get('window_material', 'lif')} window")
     return ", ".join(parts)
 
 

@@ -52,7 +52,8 @@ def plot_probes(runs, probes=(), quantity_name="velocity_y", trange=None, labels
     single = len(runs) == 1
     drawn = False
     for i, (run, label, by_probe) in enumerate(zip(runs, labels, series)):
-        shift = float(run.scene.get("velocity", 0.0)) if target_frame else 0.0
+        # The target's own speed (velocity, or target_velocity where the scene sets its frame).
+        shift = float(run.scene.get("target_velocity", run.scene.get("velocity", 0.0))) if target_frame else 0.0
         for j, name in enumerate(names):
             data = in_time_range(by_probe[name], trange)
             values = (data[quantity_name] + shift) * q.factor
@@ -67,8 +68,11 @@ def plot_probes(runs, probes=(), quantity_name="velocity_y", trange=None, labels
     if not drawn:
         note_missing(ax, "thermal model off" if thermal_off(quantity_name, [run.scene for run in runs])
                      else "no data in this time range")
+    windowed = [float(run.scene.get("window_height", 0.0)) > 0.0 for run in runs]
     if quantity_name == "velocity_y" and _all_surface(runs, names):
-        prefix = "free-surface velocity "
+        # With a window on the target the surface probe follows the sample-window interface.
+        prefix = ("sample-window interface velocity " if all(windowed)
+                  else "free-surface velocity " if not any(windowed) else "surface velocity ")
     else:
         prefix = ""
     ax.set_ylabel(prefix + q.label() + (", target at rest" if target_frame else ""))
