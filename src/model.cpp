@@ -65,7 +65,7 @@ Model::Model(const Scene& s)
       // that does is a blow-up.
       speed_limit(10.0 * (2.0 * s.fastest_body_speed() +
                           std::max({s.material_of(Body::flyer).sound_speed, s.material_of(Body::target).sound_speed,
-                                    s.material_of(Body::window).sound_speed}))) {
+                                    s.has_window() ? s.material_of(Body::window).sound_speed : 0.0}))) {
   if (s.effects.thermal)
     thermal.emplace(s.material_of(Body::flyer), s.material_of(Body::target), s.material_of(Body::window),
                     s.temperature_model, s.paper_temperature);

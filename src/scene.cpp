@@ -943,6 +943,7 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   // impact speed; shocked material is faster still, so this is a floor on the step count.
   double signal = 0.0;
   for (const Body b : {Body::flyer, Body::target, Body::window}) {
+    if (b == Body::window && !s.has_window()) continue;
     const Material& mat = materials_known ? s.material_of(b) : s.material;
     const double cL2 = mat.sound_speed * mat.sound_speed +
                        (s.effects.plasticity ? (4.0 / 3.0) * mat.shear_modulus() / mat.density : 0.0);

@@ -27,6 +27,7 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "mpmshock/grid.hpp"
@@ -76,27 +77,33 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
   // The step's scratch holds T_p (written again by the velocity gradient later in the step).
   std::vector<double>& T = pts.work;
   const double pi2_dt_over_h2 = M_PI * M_PI * dt / (flux.cell_size * flux.cell_size);
-  bins.scatter([&](std::size_t p) {  // 1.
-    const auto b = static_cast<std::size_t>(pts.body[p]);
-    T[p] = thermal.energy_temperature(pts, p);
-    const double alpha = flux.beta * flux.cell_size * pts.q[p] / (pts.density(p) * flux.sound_speed[b]);
-    const double r = -std::expm1(-alpha * pi2_dt_over_h2);
-    // A point in a bad state (a NaN the step will report) gives its nodes nothing, so the report
-    // names it and not its neighbours.
-    if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
-    const double C = pts.m[p] * capacity[b], Cr = C * r, CT = C * T[p];
-    for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
-      flux.node_rate[i] += N * Cr;
-      flux.node_temperature[i] += N * CT;
-      if (two) flux.node_capacity[i] += N * C;
+  // 1. scattered with the heat capacities where the bodies differ (a choice made once, not per node).
+  auto scatter = [&](auto materials) {
+    constexpr bool several = decltype(materials)::value;
+    bins.scatter([&](std::size_t p) {
+      const auto b = static_cast<std::size_t>(pts.body[p]);
+      T[p] = thermal.energy_temperature(pts, p);
+      const double alpha = flux.beta * flux.cell_size * pts.q[p] / (pts.density(p) * flux.sound_speed[b]);
+      const double r = -std::expm1(-alpha * pi2_dt_over_h2);
+      // A point in a bad state (a NaN the step will report) gives its nodes nothing, so the report
+      // names it and not its neighbours.
+      if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
+      const double C = several ? pts.m[p] * capacity[b] : pts.m[p], Cr = C * r, CT = C * T[p];
+      for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
+        flux.node_rate[i] += N * Cr;
+        flux.node_temperature[i] += N * CT;
+        if constexpr (several) flux.node_capacity[i] += N * C;
+      });
+    }, [&] {
+      halo.between_colours(flux.node_rate, flux.node_temperature);
+      if constexpr (several) halo.between_colours(flux.node_capacity);
+    }, [&] {
+      halo.after_colours(flux.node_rate, flux.node_temperature);
+      if constexpr (several) halo.after_colours(flux.node_capacity);
     });
-  }, [&] {
-    halo.between_colours(flux.node_rate, flux.node_temperature);
-    if (two) halo.between_colours(flux.node_capacity);
-  }, [&] {
-    halo.after_colours(flux.node_rate, flux.node_temperature);
-    if (two) halo.after_colours(flux.node_capacity);
-  });
+  };
+  if (two) scatter(std::true_type{});
+  else scatter(std::false_type{});
   if (plane) {  // a symmetry plane has one material on both sides (scene.cpp)
     plane->fold_scalar(g, flux.node_rate, rows);
     plane->fold_scalar(g, flux.node_temperature, rows);
