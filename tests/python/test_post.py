@@ -281,3 +281,17 @@ def test_torn_last_row(ctx):
     check("Traceback" not in done.stderr, done.stderr)
     rows = reader.Run(torn).regions()["B800"]["time"]
     check(len(rows) == len(reader.Run(ctx.run).regions()["B800"]["time"]), "the torn row was kept")
+
+
+def test_case_label_names_materials_frame_and_window():
+    """A scene of named materials in the laboratory frame with a window says so in its label; the
+    keys that follow another (flyer_velocity = velocity, ...) do not make legends differ."""
+    from mpmshock_post import labels
+    scene = {"porosity": 1.1, "void_radius": 25e-6, "velocity": 1000.0, "flyer_velocity": 1000.0,
+             "target_velocity": 0.0, "flyer_material": "copper", "target_material": "aluminium",
+             "window_height": 5e-4, "window_material": "lif"}
+    label = labels.case_label(scene, void_count=3)
+    assert "copper on aluminium" in label and "target at rest" in label and "lif window" in label, label
+    plain = {"porosity": 1.1, "void_radius": 25e-6, "velocity": 1000.0, "flyer_velocity": 1000.0,
+             "target_velocity": 1000.0, "flyer_material": "scene", "target_material": "scene", "window_height": 0.0}
+    assert labels.case_label(plain, void_count=3) == r"$\delta$=1.1, $r$=25 µm, $v$=1000 m/s"
