@@ -21,6 +21,31 @@ std::string bytes_text(double b) {
   return buf;
 }
 
+namespace {
+
+// The shocked state of solid bodies at impact, where their Hugoniots cross (hydrodynamic, the
+// impedance match; tests/test_impedance.cpp checks runs against it): the particle velocity u
+// taken up by the target solves rho_t (c_t + s_t u) u = rho_f (c_f + s_f (V - u)) (V - u), V the
+// closing speed.
+std::string impact_state(const Scene& s) {
+  const Material& f = s.material_of(Body::flyer);
+  const Material& t = s.material_of(Body::target);
+  auto P = [](const Material& m, double up) { return m.density * (m.sound_speed + m.hugoniot_slope * up) * up; };
+  const double V = s.flyer_velocity + s.target_velocity;
+  double lo = 0.0, hi = V;
+  for (int k = 0; k < 200; ++k) {
+    const double u = 0.5 * (lo + hi);
+    (P(t, u) < P(f, V - u) ? lo : hi) = u;
+  }
+  const double u = 0.5 * (lo + hi);
+  std::ostringstream out;
+  out << "impact (solid Hugoniots, hydrodynamic): " << P(t, u) * 1e-9 << " GPa, the interface moving at "
+      << u - s.target_velocity << " m/s\n";
+  return out.str();
+}
+
+}  // namespace
+
 template <int D>
 std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   std::ostringstream out;
@@ -84,6 +109,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   else
     out << "set by sound (cfl " << s.cfl << ", fastest signal " << signal << " m/s)";
   out << "; at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
+  if (s.porosity == 1.0 && s.flyer_porosity == 1.0) out << impact_state(s);
   for (const std::string& w : scene_warnings(s)) out << "warning: " << w << "\n";
   if (const std::string w = probes_size_warning(s, dt0); !w.empty()) out << "warning: " << w << "\n";
   // Every effect the run simulates, and none that it does not.

@@ -32,6 +32,15 @@ expect 0 "material points: [0-9]+" -- tiny.scene --check
 # --check names every effect the run simulates, and none that it does not.
 expect 0 "effects: plasticity \(with Steinberg-Guinan softening\), thermal \(energy temperature model\), melting \(T_m0 1220 K, Lindemann a 1.5, latent heat 397000 J/kg\), bounded expansion" -- tiny.scene --check --set thermal_softening=on --set bounded_expansion=on
 expect 0 "thermal \(energy temperature model, the paper's reported beside it\)" -- tiny.scene --check --set paper_temperature=on
+# Solid bodies: the impact state where their Hugoniots cross (the symmetric impact's Rankine-Hugoniot
+# pressure; copper on aluminium at rest, the impedance match of test_impedance), and the materials.
+expect 0 "impact \(solid Hugoniots, hydrodynamic\): 18.06[0-9]* GPa, the interface moving at 0 m/s" -- tiny.scene --check --set porosity=1
+expect 0 "impact \(solid Hugoniots, hydrodynamic\): 11.84[0-9]* GPa, the interface moving at 697.8[0-9]* m/s" -- \
+  tiny.scene --check --set porosity=1 --set flyer_material=copper --set target_velocity=0
+expect 0 "materials: target the scene's material keys \(2700 kg/m3\), flyer copper \(8930 kg/m3\)" -- \
+  tiny.scene --check --set porosity=1 --set flyer_material=copper
+expect 0 "window: y 0.3 .. 0.35 mm, [0-9]+ material points of pmma" -- \
+  tiny.scene --check --set "window_height=50 um" --set window_material=pmma
 expect 0 "effects: thermal \(energy temperature model\), voids; update" -- tiny.scene --check --set plasticity=off --set artificial_viscosity=off
 [ -e tiny_porous_out ] && fail "--check wrote output"
 
