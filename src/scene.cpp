@@ -796,6 +796,16 @@ void set_material_key(Scene& scene, const Entry& e) {
   scene.materials[name] = holder.material;
 }
 
+// Every constant of a material as the material.NAME.KEY lines a scene writes.
+std::string material_lines(const std::string& name, const Material& m) {
+  Scene holder;  // the material keys read Scene::material
+  holder.material = m;
+  std::string out;
+  for (const Key& k : keys())
+    if (k.material) out += "material." + name + "." + k.name + " = " + k.get(holder) + "\n";
+  return out;
+}
+
 bool is_multiple(double length, double unit) {
   const double n = std::round(length / unit);
   return n >= 1 && std::abs(n * unit - length) <= 1e-9 * length;
@@ -1159,12 +1169,7 @@ std::string resolved_scene(const Scene& scene) {
     if (b == Body::window && !scene.has_window()) continue;
     if (name != "scene" && std::find(named.begin(), named.end(), name) == named.end()) named.push_back(name);
   }
-  for (const std::string& name : named) {
-    Scene holder;  // the material keys read Scene::material
-    holder.material = scene.materials.at(name);
-    for (const Key& k : keys())
-      if (k.material) out += "material." + name + "." + k.name + " = " + k.get(holder) + "\n";
-  }
+  for (const std::string& name : named) out += material_lines(name, scene.materials.at(name));
   for (const RegionSpec& r : scene.regions) {
     out += "region." + r.name + " = ";
     switch (r.kind) {
@@ -1189,11 +1194,7 @@ std::string material_library_text() {
       "# The built-in materials: flyer_material = NAME, target_material = NAME; each line is a key a\n"
       "# scene may set to change it (material.NAME.KEY = value); a new NAME starts from aluminium.\n";
   for (const LibraryMaterial& m : material_library()) {
-    out += "\n# " + m.name + ": " + m.source + "\n";
-    Scene holder;  // the material keys read Scene::material
-    holder.material = m.constants;
-    for (const Key& k : keys())
-      if (k.material) out += "material." + m.name + "." + k.name + " = " + k.get(holder) + "\n";
+    out += "\n# " + m.name + ": " + m.source + "\n" + material_lines(m.name, m.constants);
   }
   return out;
 }
