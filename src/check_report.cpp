@@ -58,7 +58,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   out << "scene " << s.source << "\n";
   std::ostringstream speeds;
   if (s.flyer_velocity == s.target_velocity) speeds << "impact speed +-" << s.flyer_velocity << " m/s";
-  else speeds << "flyer at " << s.flyer_velocity << " m/s, target at " << 0.0 - s.target_velocity << " m/s";
+  else speeds << "flyer at " << s.flyer_velocity << " m/s, target at " << s.velocity_of(Body::target) << " m/s";
   if (D == 2)
     out << "bodies (width " << s.width * 1e3 << " mm, periodic in x, 2D plane strain, " << speeds.str() << ")\n";
   else
@@ -127,7 +127,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
          << s.latent_heat << " J/kg)";
     on.push_back(melt.str());
   }
-  if (s.material_of(Body::flyer).bound_expansion || s.material_of(Body::target).bound_expansion)
+  if (s.material_of(Body::flyer).bound_expansion || s.material_of(Body::target).bound_expansion ||
+      (s.has_window() && s.material_of(Body::window).bound_expansion))
     on.push_back("bounded expansion (Rose binding curve)");
   if (s.effects.artificial_viscosity) {
     std::ostringstream av;

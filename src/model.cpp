@@ -45,18 +45,29 @@ MeltCurve melt_curve_of(const Scene& s) {
   return {s.melt_temperature, s.lindemann_a, s.material_of(Body::target).gruneisen_gamma};  // one material (scene.cpp)
 }
 
-bool kinematic_hardening(const Scene& s) {
-  return s.material_of(Body::flyer).hardening_beta != 1.0 || s.material_of(Body::target).hardening_beta != 1.0 ||
-         (s.has_window() && s.material_of(Body::window).hardening_beta != 1.0);
+namespace {
+
+// The material of each body; without a window its slot holds the target's, so that it adds no
+// law and no table of its own.
+std::array<const Material*, kBodies> body_materials(const Scene& s) {
+  const Material& target = s.material_of(Body::target);
+  return {&s.material_of(Body::flyer), &target, s.has_window() ? &s.material_of(Body::window) : &target};
 }
 
-Model::Model(const Scene& s)
+}  // namespace
+
+bool kinematic_hardening(const Scene& s) {
+  const auto m = body_materials(s);
+  return std::any_of(m.begin(), m.end(), [](const Material* b) { return b->hardening_beta != 1.0; });
+}
+
+Model::Model(const Scene& s) : Model(s, body_materials(s), kinematic_hardening(s)) {}
+
+Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool back_stress)
     : shape(shape_of(s)),
-      eos{MieGruneisen(s.material_of(Body::flyer)), MieGruneisen(s.material_of(Body::target)),
-          MieGruneisen(s.material_of(Body::window))},
-      strength{strength_of(s, s.material_of(Body::flyer), kinematic_hardening(s)),
-               strength_of(s, s.material_of(Body::target), kinematic_hardening(s)),
-               strength_of(s, s.material_of(Body::window), kinematic_hardening(s))},
+      eos{MieGruneisen(*m[0]), MieGruneisen(*m[1]), MieGruneisen(*m[2])},
+      strength{strength_of(s, *m[0], back_stress), strength_of(s, *m[1], back_stress),
+               strength_of(s, *m[2], back_stress)},
       viscosity(viscosity_of(s)),
       failure(s.effects.spall ? FailureLaw(Spall{s.spall_strength, s.spall_void_fraction,
                                                          s.spall_criterion == SpallCriterion::neighbourhood, s.spall_point_ceiling}) : FailureLaw(NoFailure{})),
@@ -64,11 +75,8 @@ Model::Model(const Scene& s)
       // No material point outruns several times the impact speed plus the sound speed; a point
       // that does is a blow-up.
       speed_limit(10.0 * (2.0 * s.fastest_body_speed() +
-                          std::max({s.material_of(Body::flyer).sound_speed, s.material_of(Body::target).sound_speed,
-                                    s.has_window() ? s.material_of(Body::window).sound_speed : 0.0}))) {
-  if (s.effects.thermal)
-    thermal.emplace(s.material_of(Body::flyer), s.material_of(Body::target), s.material_of(Body::window),
-                    s.temperature_model, s.paper_temperature);
+                          std::max({m[0]->sound_speed, m[1]->sound_speed, m[2]->sound_speed}))) {
+  if (s.effects.thermal) thermal.emplace(*m[0], *m[1], *m[2], s.temperature_model, s.paper_temperature);
   if (thermal && s.effects.thermal_softening) thermal->set_melting(melt_curve_of(s), s.latent_heat);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;

@@ -192,17 +192,17 @@ InitialState<D> InitialBuilder<D>::build(const std::vector<char>* keep) const {
   const bool mirrored = s.symmetry == Symmetry::on;
   std::size_t row = 0, id = 0;
   if (!mirrored) {
-    add_points(st.particles, flyer_, flyer_voids_, s.flyer_velocity, s.material_of(Body::flyer).density, Body::flyer, flyer_rows_, keep,
+    add_points(st.particles, flyer_, flyer_voids_, s.velocity_of(Body::flyer), s.material_of(Body::flyer).density, Body::flyer, flyer_rows_, keep,
                row, id);
     row += static_cast<std::size_t>(flyer_.rows);
     for (std::size_t c : flyer_rows_) id += c;
   }
-  add_points(st.particles, target_, target_voids_, 0.0 - s.target_velocity, s.material_of(Body::target).density, Body::target,
+  add_points(st.particles, target_, target_voids_, s.velocity_of(Body::target), s.material_of(Body::target).density, Body::target,
              target_rows_, keep, row, id);
   if (s.has_window()) {  // above the target, numbered after it, moving with it
     row += static_cast<std::size_t>(target_.rows);
     for (std::size_t c : target_rows_) id += c;
-    add_points(st.particles, window_, window_voids_, 0.0 - s.target_velocity, s.material_of(Body::window).density,
+    add_points(st.particles, window_, window_voids_, s.velocity_of(Body::window), s.material_of(Body::window).density,
                Body::window, window_rows_, keep, row, id);
   }
   st.window_points = window_.size();

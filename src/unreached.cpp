@@ -13,7 +13,7 @@ namespace mpmshock {
 
 template <int D>
 UnreachedMaterial<D>::UnreachedMaterial(const Scene& scene, const Particles<D>& pts, const Comm& comm)
-    : comm_(&comm), on_(true), flyer_velocity_(scene.flyer_velocity), target_velocity_(0.0 - scene.target_velocity),
+    : comm_(&comm), on_(true), flyer_velocity_(scene.velocity_of(Body::flyer)), target_velocity_(scene.velocity_of(Body::target)),
       margin_(kMarginCells * scene.cell_size), speed_tolerance_(1e-9 * std::max(scene.fastest_body_speed(), 1.0)),
       energy_tolerance_(1e-12 * 0.5 * std::max(scene.fastest_body_speed(), 1.0) * std::max(scene.fastest_body_speed(), 1.0)) {
   // Every rank's points; the flyer's are the ids below the first target point's.

@@ -62,6 +62,12 @@ struct Model {
 
   explicit Model(const Scene& s);
 
+ private:
+  // With each body's material (model.cpp) and whether they all store a back stress.
+  Model(const Scene& s, const std::array<const Material*, kBodies>& materials, bool back_stress);
+
+ public:
+
   // The smallest J = V/V0 a body's equation of state admits.
   double limiting_compression(Body b) const;
   // The smallest J its fit describes (eos.hpp); below it the state is an extrapolation.

@@ -151,6 +151,9 @@ struct Scene {
   bool one_material() const;
   // The flyer's voids are the target's mirror image (flyer_mirror = on, both bodies equally porous).
   bool mirrors_flyer() const;
+  // A body's initial velocity along y: the flyer's up, the target's (and its window's) down; a target
+  // at rest has +0, not -0.
+  double velocity_of(Body b) const { return b == Body::flyer ? flyer_velocity : 0.0 - target_velocity; }
   // The faster body's speed toward the impact plane.
   double fastest_body_speed() const;
   // Material-point spacing h / ppc.
