@@ -72,6 +72,7 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool
       failure(s.effects.spall ? FailureLaw(Spall{s.spall_strength, s.spall_void_fraction,
                                                          s.spall_criterion == SpallCriterion::neighbourhood, s.spall_point_ceiling}) : FailureLaw(NoFailure{})),
       scheme(s.update_scheme), flip_fraction(s.flip_fraction), taylor_quinney(s.taylor_quinney), cell_size(s.cell_size), cfl(s.cfl),
+      volume_change_signal(s.cfl * s.cell_size / s.max_volume_change),
       // No material point outruns several times the impact speed plus the sound speed; a point
       // that does is a blow-up.
       speed_limit(10.0 * (2.0 * s.fastest_body_speed() +

@@ -352,6 +352,11 @@ const std::vector<Key>& keys() {
                          "time step = cfl h / (fastest signal: sound speed + viscous speed + particle speed); "
                          "auto = 0.3 in 2D, 0.2 in 3D (jetting in 3D was measured unstable at 0.25)",
                          FIELD(cfl)));
+    k.push_back(quantity("max_volume_change", D::none, Range{0.0, 0.5, true, false}, "0.03",
+                         "the time step is also at most this over the fastest rate of volume change |tr D| of a "
+                         "point: no point changes its volume by more than this share in one step (a collapsing "
+                         "void's jet; docs/stability.md)",
+                         FIELD(max_volume_change)));
     k.push_back(choice<UpdateScheme>("update_scheme", {{"musl", UpdateScheme::musl}, {"usl", UpdateScheme::usl}}, "musl",
                                      "musl: stress from the re-mapped velocity, energy from the exact work of the forces (conserved); usl: classic",
                                      FIELD(update_scheme)));
@@ -738,8 +743,9 @@ std::string override_key(const std::string& arg) { return trim(arg.substr(0, arg
 
 std::vector<std::string> scene_warnings(const Scene& s) {
   std::vector<std::string> out;
-  if (s.dimension == 2 && s.cfl > 0.5)
-    out.push_back("cfl " + format_number(s.cfl) + " > 0.5 was measured unstable in jetting cases (docs/stability.md)");
+  if (s.dimension == 2 && s.cfl > kCfl2D)
+    out.push_back("cfl " + format_number(s.cfl) + " > " + format_number(kCfl2D) +
+                  ": fewer steps, larger errors (an isentropic release heats twice as much at 0.6: docs/stability.md)");
   if (s.dimension == 3 && s.cfl > kCfl3D)
     out.push_back("cfl " + format_number(s.cfl) + " > " + format_number(kCfl3D) +
                   " was measured unstable in 3D jetting (docs/stability.md)");

@@ -123,7 +123,9 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
 }
 
 struct StressUpdateResult {
-  double max_signal = 0.0;                  // fastest |v| + sound (+ viscous) speed, for the next dt
+  // The fastest |v| + sound (+ viscous) speed, or volume_change_signal |tr D| where that is more:
+  // the next dt is cfl h over it.
+  double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};  // lowest index of a point in a bad state, if any
   ExactSum work_mismatch;                   // sum of m (work - own trapezoid work) over the points [J]
 };
@@ -189,7 +191,8 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
     mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum.add(pts.m[p] * st.work_mismatch);
     const double speed2 = dot(pts.v[p], pts.v[p]);
     if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;
-    max_signal = std::max(max_signal, std::sqrt(speed2) + signal);
+    const double rate = volume_rate ? volume_rate[p] : trace(st.L);  // the rate F followed
+    max_signal = std::max({max_signal, std::sqrt(speed2) + signal, model.volume_change_signal * std::abs(rate)});
   }
   ExactSum total_mismatch;
   for (const ThreadSum& t : mismatch) total_mismatch += t.sum;

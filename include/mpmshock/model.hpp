@@ -52,6 +52,9 @@ struct Model {
   double taylor_quinney;  // share of plastic work that becomes heat
   double cell_size;
   double cfl;
+  // cfl h / max_volume_change: a point whose volume changes at the rate |tr D| counts as a signal
+  // of this times |tr D|, so that the step cfl h / signal keeps |tr D| dt <= max_volume_change.
+  double volume_change_signal;
   double speed_limit;  // |v| above this is a numerical runaway, not physics
   double conductivity = 0.0;   // k with heat_conduction = on, else 0
   double diffusivity = 0.0;    // k / (rho0 c_v) [m2/s]
@@ -77,8 +80,8 @@ struct Model {
   bool has_strength() const { return has_stress(strength[0]); }
   bool has_failure() const { return std::holds_alternative<Spall>(failure); }
   bool conducts_heat() const { return conductivity > 0.0; }
-  // The time step the physics allows: cfl h over the fastest signal, and with conduction the
-  // explicit diffusion bound 0.2 h^2 / alpha.
+  // The time step the physics allows: cfl h over the fastest signal (which counts the fastest
+  // volume change, volume_change_signal), and with conduction the explicit diffusion bound 0.2 h^2 / alpha.
   double time_step(double max_signal) const {
     const double mechanical = cfl * cell_size / max_signal;
     return conducts_heat() ? std::min(mechanical, 0.2 * cell_size * cell_size / diffusivity) : mechanical;
