@@ -131,7 +131,7 @@ class Plan:
     sensitivity_cell: float = 5e-6
     sensitivity_seeds: int = 2
     sensitivity_av: tuple = (2.0, 1.0, 0.5, 0.25)
-    sensitivity_cfl: tuple = (0.45, 0.3, 0.2, 0.1)
+    sensitivity_cfl: tuple = (0.6, 0.45, 0.3, 0.1)
     sensitivity_flip: tuple = (1.0, 0.99, 0.95)
     answer_cells: tuple = (20e-6, 10e-6, 5e-6)
     answer_check_cells: tuple = (20e-6, 10e-6, 5e-6, 2.5e-6)
@@ -148,7 +148,7 @@ class Plan:
         return cls(quick=True, solid_speeds=(1000.0,), solid_extra_cell=None, solid_shapes=("bspline2", "bilinear"),
                    solid_ppc=(2,), porous_deltas=(1.1,), porous_seeds={1.1: 2}, porous_shape_seeds={},
                    porous_cells=(10e-6, 5e-6), sensitivity_cell=10e-6,
-                   sensitivity_seeds=1, sensitivity_av=(2.0, 1.0, 0.5), sensitivity_cfl=(0.45, 0.3, 0.15),
+                   sensitivity_seeds=1, sensitivity_av=(2.0, 1.0, 0.5), sensitivity_cfl=(0.6, 0.3, 0.15),
                    sensitivity_flip=(1.0, 0.95), answer_cells=(40e-6, 20e-6, 10e-6),
                    answer_check_cells=(40e-6, 20e-6, 10e-6), answer_width=400e-6, answer_seeds=1, answer_anchor=False)
 

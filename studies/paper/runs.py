@@ -48,8 +48,8 @@ SNAPSHOT_FIGURES = (1, 3, 6, 11)
 # narrower column. 20 um cells are the shipped base config's resolution (docs/accuracy.md: plateau
 # pressure within 10 %, mean temperature within 50 K at delta 1.03); the 10 um voids of the delta 1.4
 # family are then half a cell in radius, so those curves show trends, not converged values. cfl 0.45
-# takes a third fewer steps and moves results by under 1 % (docs/accuracy.md); it stays below the
-# 0.5 above which jetting runs fail (docs/stability.md). The delta 1.03 cases keep a 1 mm column
+# takes a third fewer steps and moves results by under 1 % (docs/accuracy.md); every hard case holds
+# at it (docs/stability.md). The delta 1.03 cases keep a 1 mm column
 # (per body 75 voids of 25 um, 18 of 50 um, 5 of 100 um); the cases with 10 um voids hold 80
 # (delta 1.01) to 3300 (delta 1.7) per body in 0.5 mm. The whole quick campaign, both temperature
 # models, took 5 minutes on the shared 2-core machine (--jobs 1), 3 GB of runs.
