@@ -112,7 +112,7 @@ int main() {
     CHECK(parse_scene("dimension = 3\n", "d.scene").cfl == kCfl3D);
     CHECK(parse_scene("dimension = 3\ncfl = 0.25\n", "d.scene").cfl == 0.25);
     CHECK(parse_scene("dimension = 3\n", "d.scene", {"cfl=auto"}).cfl == kCfl3D);
-    CHECK(resolved_scene(parse_scene("dimension = 3\n", "d.scene")).find("cfl = 0.2\n") != std::string::npos);
+    CHECK(resolved_scene(parse_scene("dimension = 3\n", "d.scene")).find("cfl = 0.3\n") != std::string::npos);
     CHECK(parse_scene("dimension = 3\nwidth = 0.2 mm\n", "d.scene").derived_depth() == 0.2e-3);
     CHECK(parse_scene("dimension = 3\ndepth = 0.1 mm\n", "d.scene").derived_depth() == 0.1e-3);
     CHECK_THROWS_WITH(parse_scene("probe.p = point 10 um 20 um 30 um\n", "d.scene"), "d.scene:1", "'probe.p'",
