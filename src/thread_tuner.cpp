@@ -13,9 +13,11 @@ int ThreadTuner::next_candidate() {
   return go_down_ ? current_ / 2 : std::min(max_, 2 * current_);
 }
 
-double ThreadTuner::median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
+double ThreadTuner::mean_without_largest(const std::vector<double>& v) {
+  if (v.size() == 1) return v.front();
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  return (sum - *std::max_element(v.begin(), v.end())) / static_cast<double>(v.size() - 1);
 }
 
 void ThreadTuner::record(double seconds) {
@@ -23,14 +25,18 @@ void ThreadTuner::record(double seconds) {
   if (threads() < max_) ++below_max_;
   if (max_ == 1) return;
   if (trying_) {
+    if (warming_) {  // the change of team's step
+      warming_ = false;
+      return;
+    }
     trial_.push_back(seconds);
-    const double now = median(recent_);
+    const double now = mean_without_largest(recent_);
     const int n = static_cast<int>(trial_.size());
     const bool clear_loss =
         n == kClearLoss && *std::min_element(trial_.begin(), trial_.end()) > (1.0 + kMargin) * now;
-    if (n < kSamples && !clear_loss) return;
+    if (n < static_cast<int>(recent_.size()) && !clear_loss) return;
     trying_ = false;
-    if (!clear_loss && median(trial_) < (1.0 - kMargin) * now) {
+    if (!clear_loss && mean_without_largest(trial_) < (1.0 - kMargin) * now) {
       current_ = candidate_;
       period_ = kPeriodAfterSwitch;
       recent_.clear();
@@ -42,9 +48,10 @@ void ThreadTuner::record(double seconds) {
     return;
   }
   recent_.push_back(seconds);
-  if (static_cast<int>(recent_.size()) > kSamples) recent_.erase(recent_.begin());
-  if (++since_try_ >= period_ && static_cast<int>(recent_.size()) == kSamples) {
+  if (static_cast<int>(recent_.size()) > kWindow) recent_.erase(recent_.begin());
+  if (++since_try_ >= period_ && static_cast<int>(recent_.size()) >= kSamples) {
     trying_ = true;
+    warming_ = true;
     candidate_ = next_candidate();
   }
 }
