@@ -25,7 +25,8 @@ const std::set<std::string>& restart_changeable_keys() {
   static const std::set<std::string> keys = {
       "end_time",      "cfl",        "sample_interval", "snapshot_interval", "snapshot_compression",
       "snapshot_grid", "output_dir", "av_linear",       "av_quadratic",      "artificial_viscosity",
-      "update_scheme", "thermal",  "flip_fraction", "probe_interval", "snapshot_times", "skip_unreached"};
+      "update_scheme", "thermal",  "flip_fraction", "probe_interval", "snapshot_times", "skip_unreached",
+      "max_volume_change"};
   return keys;
 }
 
@@ -49,6 +50,8 @@ bool scene_sets(const std::string& scene_text, const std::string& key) {
 std::vector<std::string> with_old_defaults(const std::string& scene_text, std::vector<std::string> overrides) {
   if (!scene_sets(scene_text, "symmetry")) overrides.push_back("symmetry=off");
   if (!scene_sets(scene_text, "spall_criterion")) overrides.push_back("spall_criterion=point");
+  // Written before the time step had a volume limit: go on without one (1e9 never binds).
+  if (!scene_sets(scene_text, "max_volume_change")) overrides.push_back("max_volume_change=1e9");
   return overrides;
 }
 

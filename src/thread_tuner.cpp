@@ -45,6 +45,11 @@ void ThreadTuner::record(double seconds) {
     }
     trial_.clear();
     since_try_ = 0;
+    settling_ = true;
+    return;
+  }
+  if (settling_) {  // the change of team back (or to the new count)
+    settling_ = false;
     return;
   }
   recent_.push_back(seconds);

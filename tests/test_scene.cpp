@@ -2,6 +2,7 @@
 // the file, the line and the key.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -78,6 +79,9 @@ int main() {
   CHECK_THROWS_WITH(parse("porosity = 0.9\n"), "t.scene:1", "'porosity'", "out of range", ">= 1");
   CHECK_THROWS_WITH(parse("cell_size = -1 um\n"), "'cell_size'", "out of range");
   CHECK_THROWS_WITH(parse("cfl = 1\n"), "'cfl'", "< 1");
+  CHECK_THROWS_WITH(parse("max_volume_change = 0\n"), "t.scene:1", "'max_volume_change'", "> 0");
+  CHECK(parse("").max_volume_change == 0.03);
+  CHECK(parse("max_volume_change = 1e9\n").max_volume_change == 1e9);
   CHECK_THROWS_WITH(parse("velocity = 1e999\n"), "'velocity'", "out of the range");
   CHECK_THROWS_WITH(parse("particles_per_cell = 2.5\n"), "'particles_per_cell'", "whole number");
   CHECK_THROWS_WITH(parse("plasticity = maybe\n"), "'plasticity'", "on or off");
@@ -113,6 +117,12 @@ int main() {
     CHECK(parse_scene("dimension = 3\ncfl = 0.25\n", "d.scene").cfl == 0.25);
     CHECK(parse_scene("dimension = 3\n", "d.scene", {"cfl=auto"}).cfl == kCfl3D);
     CHECK(resolved_scene(parse_scene("dimension = 3\n", "d.scene")).find("cfl = 0.3\n") != std::string::npos);
+    // Above the automatic value, in either dimension, a warning says what a larger step costs.
+    for (const char* d : {"", "dimension = 3\n"}) {
+      const std::vector<std::string> w = scene_warnings(parse_scene(std::string(d) + "cfl = 0.45\n", "d.scene"));
+      CHECK(std::any_of(w.begin(), w.end(), [](const std::string& s) { return s.find("cfl 0.45 > 0.3") != std::string::npos; }));
+      CHECK(scene_warnings(parse_scene(d, "d.scene")).empty());
+    }
     CHECK(parse_scene("dimension = 3\nwidth = 0.2 mm\n", "d.scene").derived_depth() == 0.2e-3);
     CHECK(parse_scene("dimension = 3\ndepth = 0.1 mm\n", "d.scene").derived_depth() == 0.1e-3);
     CHECK_THROWS_WITH(parse_scene("probe.p = point 10 um 20 um 30 um\n", "d.scene"), "d.scene:1", "'probe.p'",

@@ -18,7 +18,8 @@
 // 2026-12-04: median 0.032 s, 90th percentile 0.108 s, mean 0.046 s, against a steady 0.034 s on 1
 // thread), so the median chose 2 threads where 1 ran 1.3 times faster. The largest sample of each
 // set is left out, so that one isolated slow step (a page fault) does not decide; the first step
-// of a try is left out too, as it pays for the change of team (a thread moving to another core).
+// of a try and the first after it are left out too, as they pay for the change of team (a thread
+// moving to another core).
 // Results do not depend on the thread count (every sum runs in a fixed order), so switching is
 // free of side effects. Pure logic: step times come in from the caller, so tests drive it with
 // made-up times.
@@ -67,6 +68,7 @@ class ThreadTuner {
   std::vector<double> recent_;  // the last kWindow step times at current_
   std::vector<double> trial_;   // step times at candidate_ during a try, after its first
   bool warming_ = false;        // the try's first step, not measured
+  bool settling_ = false;       // the first step after a try (another change of team), not measured
   std::int64_t below_max_ = 0, steps_ = 0;
 };
 
