@@ -313,15 +313,17 @@ namespace {
 // lowest code), as one process meets it first; no failure is -inf. Ids are below 2^32, so the key
 // is exact in a double; an unknown point (kNoPoint) counts as id 2^40.
 constexpr double kUnknownPoint = 1099511627776.0;
+constexpr double kCodes = StepStatus::kCodes;
+static_assert((kUnknownPoint + 1.0) * kCodes <= 9007199254740992.0, "a status key must be exact in a double (2^53)");
 double status_key(const StepStatus& s) {
   if (s.ok()) return -std::numeric_limits<double>::infinity();
   const double id = s.point == kNoPoint ? kUnknownPoint : static_cast<double>(s.point);
-  return -(id * 4.0 + static_cast<double>(s.code));
+  return -(id * kCodes + static_cast<double>(s.code));
 }
 StepStatus status_of_key(double key) {
   if (key == -std::numeric_limits<double>::infinity()) return {};
-  const double k = -key, id = std::floor(k / 4.0);
-  return {static_cast<StepStatus::Code>(static_cast<int>(k - 4.0 * id)),
+  const double k = -key, id = std::floor(k / kCodes);
+  return {static_cast<StepStatus::Code>(static_cast<int>(k - kCodes * id)),
           id == kUnknownPoint ? kNoPoint : static_cast<std::size_t>(id)};
 }
 

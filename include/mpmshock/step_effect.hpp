@@ -21,10 +21,15 @@ struct StepStatus {
     left_grid,          // a point outside the grid's rows
     below_zero_kelvin,  // internal energy below the 0 K isotherm (ZeroKelvinCheck)
   };
+  // How many codes there are: the ranks agree on a status packed with its code in [0, kCodes)
+  // (simulation.cpp, status_key). A new code goes last and raises this, or the assert fails.
+  static constexpr int kCodes = 4;
   Code code = Code::ok;
   std::size_t point = 0;  // id of the offending material point (its storage index on one rank)
   bool ok() const { return code == Code::ok; }
 };
+static_assert(static_cast<int>(StepStatus::Code::below_zero_kelvin) + 1 == StepStatus::kCodes,
+              "StepStatus::kCodes must count every code (status_key packs them)");
 
 template <int D>
 class StepEffect {
