@@ -162,7 +162,10 @@ while kill -0 "$launcher" 2>/dev/null; do
   [ -f stopped/regions.csv ] && [ "$(wc -l < stopped/regions.csv)" -ge 30 ] && break
   sleep 0.05
 done
-victim=$(pgrep -f "$bin $data/tiny_porous.scene" | grep -vx "$launcher" | sort -n | tail -1)
+# The rank by its whole command line: under ctest -j another test may run the same binary on the
+# same scene at the same time (hostile_input did, and took this SIGTERM).
+victim=$(pgrep -f "$bin $data/tiny_porous.scene --quiet --set end_time=50us --set output_dir=stopped" |
+  grep -vx "$launcher" | sort -n | tail -1)
 kill -TERM "$victim"
 wait "$launcher"
 rc=$?
