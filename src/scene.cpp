@@ -743,7 +743,7 @@ std::string override_key(const std::string& arg) { return trim(arg.substr(0, arg
 
 std::vector<std::string> scene_warnings(const Scene& s) {
   std::vector<std::string> out;
-  const double cfl_auto = s.dimension == 3 ? kCfl3D : kCfl2D;
+  const double cfl_auto = auto_cfl(s.dimension);
   if (s.cfl > cfl_auto)
     out.push_back("cfl " + format_number(s.cfl) + " > " + format_number(cfl_auto) +
                   ": fewer steps, larger errors (an isentropic release heats twice as much at 0.6: docs/stability.md)");
@@ -1110,7 +1110,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   scene.regions = regions.empty() ? paper_regions() : regions;
 
   for (const auto& [key, e] : by_key) scene.origin[key] = e.at.where;
-  if (scene.cfl < 0.0) scene.cfl = scene.dimension == 3 ? kCfl3D : kCfl2D;
+  if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.dimension);
   if (std::isnan(scene.flyer_velocity)) scene.flyer_velocity = scene.velocity;
   if (std::isnan(scene.target_velocity)) scene.target_velocity = scene.velocity;
   if (std::isnan(scene.flyer_porosity)) scene.flyer_porosity = scene.porosity;

@@ -24,11 +24,11 @@ void ThreadTuner::record(double seconds) {
   ++steps_;
   if (threads() < max_) ++below_max_;
   if (max_ == 1) return;
+  if (changes_team_) {
+    changes_team_ = false;
+    return;
+  }
   if (trying_) {
-    if (warming_) {  // the change of team's step
-      warming_ = false;
-      return;
-    }
     trial_.push_back(seconds);
     const double now = mean_without_largest(recent_);
     const int n = static_cast<int>(trial_.size());
@@ -45,18 +45,14 @@ void ThreadTuner::record(double seconds) {
     }
     trial_.clear();
     since_try_ = 0;
-    settling_ = true;
-    return;
-  }
-  if (settling_) {  // the change of team back (or to the new count)
-    settling_ = false;
+    changes_team_ = true;
     return;
   }
   recent_.push_back(seconds);
   if (static_cast<int>(recent_.size()) > kWindow) recent_.erase(recent_.begin());
   if (++since_try_ >= period_ && static_cast<int>(recent_.size()) >= kSamples) {
     trying_ = true;
-    warming_ = true;
+    changes_team_ = true;
     candidate_ = next_candidate();
   }
 }

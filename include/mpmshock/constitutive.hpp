@@ -39,6 +39,12 @@ struct PointState {
   double volume_rate = std::numeric_limits<double>::quiet_NaN();
 };
 
+// The rate of volume change F follows: the smoothed one where there is one, else tr L.
+template <int D>
+inline double volume_rate_of(const PointState<D>& st) {
+  return std::isnan(st.volume_rate) ? trace(st.L) : st.volume_rate;
+}
+
 // The energy-consistency diagnostic of a point's step: the work it was given (the exact work of the
 // nodal forces) minus the work of its own deformation by the trapezoid rule,
 // -(1/2)((P + q)^n + (P + q)^{n+1}) dV + V^{n+1/2} (1/2)(s^n + s^{n+1}) : L dt, per unit mass.
@@ -62,7 +68,7 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
                                                   [[maybe_unused]] const Failure& failure = {},
                                                   [[maybe_unused]] double taylor_quinney = 1.0) {
   const StrainRate<D> rate = strain_rate(st.L);
-  const double volume_rate = std::isnan(st.volume_rate) ? trace(st.L) : st.volume_rate;
+  const double volume_rate = volume_rate_of(st);
   const double volume_shift = (volume_rate - trace(st.L)) / D;  // 0 without smoothing
   const double J_before = det(st.F), pq_before = st.P + st.q;
   [[maybe_unused]] const Deviator<D> s_before = st.s;
@@ -191,8 +197,8 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
     mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum.add(pts.m[p] * st.work_mismatch);
     const double speed2 = dot(pts.v[p], pts.v[p]);
     if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;
-    const double rate = volume_rate ? volume_rate[p] : trace(st.L);  // the rate F followed
-    max_signal = std::max({max_signal, std::sqrt(speed2) + signal, model.volume_change_signal * std::abs(rate)});
+    max_signal = std::max(
+        {max_signal, std::sqrt(speed2) + signal, model.volume_change_signal * std::abs(volume_rate_of(st))});
   }
   ExactSum total_mismatch;
   for (const ThreadSum& t : mismatch) total_mismatch += t.sum;

@@ -178,6 +178,7 @@ struct Scene {
 // the r/4 collapse-focus column hold at 0.3 (0.2 until 2026-12-04, when 3D jetting had stopped at
 // 0.25), so both dimensions take the same step for the same accuracy.
 constexpr double kCfl2D = 0.3, kCfl3D = 0.3;
+constexpr double auto_cfl(int dimension) { return dimension == 3 ? kCfl3D : kCfl2D; }
 
 // A scene error names the file, the line and the key: "scene.cfg:12: key 'porosity': ...".
 class SceneError : public std::runtime_error {

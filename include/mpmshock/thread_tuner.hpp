@@ -67,8 +67,8 @@ class ThreadTuner {
   int since_try_ = 0;
   std::vector<double> recent_;  // the last kWindow step times at current_
   std::vector<double> trial_;   // step times at candidate_ during a try, after its first
-  bool warming_ = false;        // the try's first step, not measured
-  bool settling_ = false;       // the first step after a try (another change of team), not measured
+  // The next step changes the team (a try's first step, or the first after it): not measured.
+  bool changes_team_ = false;
   std::int64_t below_max_ = 0, steps_ = 0;
 };
 
