@@ -114,7 +114,10 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   if (const std::string w = probes_size_warning(s, dt0); !w.empty()) out << "warning: " << w << "\n";
   // Every effect the run simulates, and none that it does not.
   std::vector<std::string> on;
-  if (s.effects.plasticity) on.push_back(s.effects.thermal_softening ? "plasticity (with Steinberg-Guinan softening)" : "plasticity");
+  if (s.effects.plasticity)
+    on.push_back(s.strength_model == StrengthModel::johnson_cook
+                     ? "plasticity (Johnson-Cook flow stress: strain, rate and temperature; molten at jc_melt_temperature)"
+                     : s.effects.thermal_softening ? "plasticity (with Steinberg-Guinan softening)" : "plasticity");
   if (s.effects.thermal) {
     std::string thermal = s.temperature_model == TemperatureModel::paper ? "thermal (the paper's temperature model"
                                                                          : "thermal (energy temperature model";

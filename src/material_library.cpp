@@ -5,7 +5,9 @@
 // tangent modulus the slope from Y0 to its Y_max over a plastic strain of 0.5 (an approximation
 // of its power-law hardening by the bilinear law). fit_particle_velocity, where no source gives the
 // range of the linear fit, is an estimate (3 km/s for the metals and PMMA, 5 km/s for LiF), and the
-// cohesive energy is used only with bounded_expansion = on.
+// cohesive energy is used only with bounded_expansion = on. Johnson-Cook constants
+// (strength_model = johnson_cook) are given where a source gives them: aluminium and copper; tantalum,
+// LiF and PMMA have none (jc_yield_stress = 0) until a scene sets material.NAME.jc_*.
 #include "mpmshock/material.hpp"
 
 namespace mpmshock {
@@ -30,37 +32,55 @@ Material make(double rho0, double c0, double s, double gamma0, double cv, double
   return m;
 }
 
+// Johnson-Cook constants: A, B [Pa], n, C, m, T_m [K] (T_r stays 298 K).
+Material with_johnson_cook(Material m, double A, double B, double n, double C, double mt, double T_m) {
+  m.jc_yield_stress = A;
+  m.jc_hardening = B;
+  m.jc_hardening_exponent = n;
+  m.jc_rate_coefficient = C;
+  m.jc_thermal_exponent = mt;
+  m.jc_melt_temperature = T_m;
+  return m;
+}
+
+// A material for which no Johnson-Cook constants are sourced: strength_model = johnson_cook refuses
+// it until a scene gives them (material.NAME.jc_*).
+Material without_johnson_cook(Material m) { return with_johnson_cook(m, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0); }
+
 }  // namespace
 
 const std::vector<LibraryMaterial>& material_library() {
   static const std::vector<LibraryMaterial> library = {
       {"aluminium", Material{},
        "the paper's aluminium (Xu et al.) with the physics-notes errata (E = 69 GPa); k and the "
-       "Steinberg-Guinan softening of 6061-T6 (Steinberg 1996)"},
+       "Steinberg-Guinan softening of 6061-T6 (Steinberg 1996); Johnson-Cook constants of 6061-T6 as commonly "
+       "tabulated after Johnson and Holmquist (1989)"},
       // Steinberg 1996 (OFHC copper): rho0 8930, c0 3940, s 1.489, gamma0 2.02, G0 47.7 GPa,
       // Y0 0.12 GPa, Y_max 0.64 GPa; nu 0.34 gives E = 2 G0 (1 + nu) = 127.8 GPa.
       {"copper",
-       make(8930.0, 3940.0, 1.489, 2.02, 383.0, 127.8e9, 0.34, 120e6, 1.04e9, 401.0, 5.30e6, 3000.0),
+       // Johnson and Cook (1983), OFHC copper: A 90 MPa, B 292 MPa, n 0.31, C 0.025, m 1.09, T_m 1356 K.
+       with_johnson_cook(make(8930.0, 3940.0, 1.489, 2.02, 383.0, 127.8e9, 0.34, 120e6, 1.04e9, 401.0, 5.30e6, 3000.0),
+                         90e6, 292e6, 0.31, 0.025, 1.09, 1356.0),
        "OFHC copper, Steinberg (1996) Equation of State and Strength Properties of Selected Materials "
        "(Hugoniot, G0, Y0; tangent modulus (Y_max - Y0)/0.5); c_v 383 J/(kg K), k 401 W/(m K), "
-       "cohesive energy 3.49 eV/atom (Kittel)"},
+       "cohesive energy 3.49 eV/atom (Kittel); Johnson-Cook constants of OFHC copper, Johnson and Cook (1983)"},
       // Steinberg 1996 (tantalum): rho0 16690, c0 3414, s 1.201, gamma0 1.67, G0 69 GPa, Y0 0.77 GPa,
       // Y_max 1.1 GPa; nu 0.34 gives E = 184.9 GPa.
       {"tantalum",
-       make(16690.0, 3414.0, 1.201, 1.67, 140.0, 184.9e9, 0.34, 770e6, 0.66e9, 57.5, 4.32e6, 3000.0),
+       without_johnson_cook(make(16690.0, 3414.0, 1.201, 1.67, 140.0, 184.9e9, 0.34, 770e6, 0.66e9, 57.5, 4.32e6, 3000.0)),
        "tantalum, Steinberg (1996) (Hugoniot, G0, Y0; tangent modulus (Y_max - Y0)/0.5); c_v 140 J/(kg K), "
-       "k 57.5 W/(m K), cohesive energy 8.10 eV/atom (Kittel)"},
+       "k 57.5 W/(m K), cohesive energy 8.10 eV/atom (Kittel); no Johnson-Cook constants"},
       // LiF: Marsh (1980) LASL Shock Hugoniot Data, c0 5150, s 1.35; gamma0 1.69; elastic constants of
       // the polycrystal (E 64.9 GPa, nu 0.22), elastic limit ~0.2 GPa.
-      {"lif", make(2638.0, 5150.0, 1.35, 1.69, 1560.0, 64.9e9, 0.22, 200e6, 0.0, 11.3, 39.9e6, 5000.0),
+      {"lif", without_johnson_cook(make(2638.0, 5150.0, 1.35, 1.69, 1560.0, 64.9e9, 0.22, 200e6, 0.0, 11.3, 39.9e6, 5000.0)),
        "lithium fluoride window, Marsh (1980) LASL Shock Hugoniot Data (c0, s), gamma0 1.69; polycrystal "
        "E and nu; yield 0.2 GPa (approximate, no hardening); c_v 1560 J/(kg K), k 11.3 W/(m K); cohesive "
-       "energy: the lattice energy 1036 kJ/mol (CRC)"},
+       "energy: the lattice energy 1036 kJ/mol (CRC); no Johnson-Cook constants"},
       // PMMA: Marsh (1980), c0 2598, s 1.516; gamma0 0.97.
-      {"pmma", make(1186.0, 2598.0, 1.516, 0.97, 1466.0, 3.3e9, 0.35, 100e6, 0.0, 0.19, 20e6, 3000.0),
+      {"pmma", without_johnson_cook(make(1186.0, 2598.0, 1.516, 0.97, 1466.0, 3.3e9, 0.35, 100e6, 0.0, 0.19, 20e6, 3000.0)),
        "PMMA window, Marsh (1980) LASL Shock Hugoniot Data (c0, s), gamma0 0.97; E 3.3 GPa, nu 0.35, "
        "yield 0.1 GPa (approximate, no hardening); c_v 1466 J/(kg K), k 0.19 W/(m K); no cohesive energy "
-       "(a polymer decomposes): keep bounded_expansion off"},
+       "(a polymer decomposes): keep bounded_expansion off; no Johnson-Cook constants"},
   };
   return library;
 }

@@ -32,6 +32,7 @@ ThermalSoftening softening_of(const Scene& s) {
 
 StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
   if (!s.effects.plasticity) return NoStrength{};
+  if (s.strength_model == StrengthModel::johnson_cook) return JohnsonCook(mat);  // isotropic, its own softening (scene.cpp)
   const bool isotropic = mat.hardening_beta == 1.0 && !back_stress;
   if (s.effects.thermal_softening) {
     if (isotropic) return VonMises<false, true>(mat, softening_of(s));

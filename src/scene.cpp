@@ -394,6 +394,15 @@ const std::vector<Key>& keys() {
     k.push_back(flag("plasticity", "on",
                      "von Mises strength with mixed hardening; off: hydrodynamic, no deviatoric stress",
                      FIELD(effects.plasticity)));
+    k.push_back(choice<StrengthModel>(
+        "strength_model", {{"bilinear", StrengthModel::bilinear}, {"johnson_cook", StrengthModel::johnson_cook}},
+        "bilinear",
+        "the flow stress of plasticity: bilinear, yield_stress + the plastic modulus of tangent_modulus times "
+        "eps_p (with thermal_softening, Steinberg-Guinan's factor); johnson_cook, (A + B eps_p^n)(1 + C ln "
+        "rate)(1 - T*^m) with each body's jc_* constants, strain rate in 1/s, its own thermal softening and "
+        "melt at jc_melt_temperature (isotropic hardening; not with thermal_softening; built-in constants: "
+        "aluminium, copper)",
+        FIELD(strength_model)));
     k.push_back(flag("thermal", "on", "temperatures by temperature_model; off: no temperature is computed",
                      FIELD(effects.thermal)));
     k.push_back(choice<TemperatureModel>(
@@ -508,6 +517,26 @@ const std::vector<Key>& keys() {
                          "the largest particle velocity the Us-up fit describes (217 GPa on the aluminium Hugoniot); "
                          "points compressed past its Hugoniot state are counted as outside the equation of state's range",
                          FIELD(material.fit_particle_velocity)));
+    k.push_back(quantity("jc_yield_stress", D::pressure, non_negative(), "324 MPa",
+                         "Johnson-Cook A, the yield stress at zero plastic strain, 1 /s and room temperature "
+                         "(strength_model = johnson_cook; 6061-T6 after Johnson and Holmquist 1989); 0: the material "
+                         "has no Johnson-Cook constants",
+                         FIELD(material.jc_yield_stress)));
+    k.push_back(quantity("jc_hardening", D::pressure, non_negative(), "114 MPa", "Johnson-Cook B, the strain hardening",
+                         FIELD(material.jc_hardening)));
+    k.push_back(quantity("jc_hardening_exponent", D::none, closed(0.0, 10.0), "0.42", "Johnson-Cook n",
+                         FIELD(material.jc_hardening_exponent)));
+    k.push_back(quantity("jc_rate_coefficient", D::none, closed(0.0, 10.0), "0.002",
+                         "Johnson-Cook C, per e-fold of the equivalent strain rate above 1 /s",
+                         FIELD(material.jc_rate_coefficient)));
+    k.push_back(quantity("jc_thermal_exponent", D::none, closed(0.0, 100.0), "1.34", "Johnson-Cook m",
+                         FIELD(material.jc_thermal_exponent)));
+    k.push_back(quantity("jc_melt_temperature", D::temperature, closed(0.0, 1e5), "925 K",
+                         "Johnson-Cook T_m: T* = (T - jc_room_temperature) / (T_m - jc_room_temperature); molten at T_m",
+                         FIELD(material.jc_melt_temperature)));
+    k.push_back(quantity("jc_room_temperature", D::temperature, closed(0.0, 1e5), "298 K",
+                         "Johnson-Cook T_r, the temperature of its tests, where T* = 0",
+                         FIELD(material.jc_room_temperature)));
     for (std::size_t i = first_material_key; i < k.size(); ++i) k[i].material = true;
     // Output
     k.push_back(text("output_dir", "output", "directory for regions.csv, snapshots and the summary (no control characters, no '#')",
@@ -904,6 +933,30 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                                     (s.has_window() ? ", window_material " + s.window_material : std::string()) +
                                     "): its melt curve and constants are one material's");
   }
+  if (s.strength_model == StrengthModel::johnson_cook) {
+    if (!s.effects.plasticity) fail("strength_model", "johnson_cook needs plasticity = on");
+    if (s.effects.thermal_softening)
+      fail("strength_model", "johnson_cook softens by its own (1 - T*^m) and melts at jc_melt_temperature: use it "
+                             "with thermal_softening = off (Steinberg-Guinan is the bilinear law's softening)");
+    // Each body's material needs its constants, in a state where it has strength.
+    for (const Body b : {Body::flyer, Body::target, Body::window}) {
+      if (!materials_known || (b == Body::window && !s.has_window())) continue;
+      const std::string& name = b == Body::flyer ? s.flyer_material : b == Body::target ? s.target_material : s.window_material;
+      const std::string prefix = name == "scene" ? "" : "material." + name + ".";
+      const Material& m = s.material_of(b);
+      if (!m.has_johnson_cook())
+        fail(prefix + "jc_yield_stress", "strength_model = johnson_cook, but material " + name +
+                                             " has no Johnson-Cook constants: give its " + prefix +
+                                             "jc_* keys (mpmshock --keys), or use strength_model = bilinear");
+      else if (m.hardening_beta != 1.0)
+        fail(prefix + "hardening_beta", "johnson_cook hardens isotropically: needs hardening_beta = 1 (material " + name + ")");
+      else if (!(m.jc_thermal_exponent > 0.0))
+        fail(prefix + "jc_thermal_exponent", "must be > 0 with strength_model = johnson_cook (material " + name + ")");
+      else if (!(m.jc_melt_temperature > std::max(m.jc_room_temperature, m.initial_temperature)))
+        fail(prefix + "jc_melt_temperature", "must be above jc_room_temperature and initial_temperature (material " +
+                                                 name + "): the material would start molten");
+    }
+  }
   if (s.has_window() && !is_multiple(s.window_height, a))
     fail("window_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
                               format_number(a) + " m)");
@@ -995,7 +1048,11 @@ bool same_constants(const Material& a, const Material& b) {
          a.hugoniot_slope == b.hugoniot_slope && a.gruneisen_gamma == b.gruneisen_gamma &&
          a.specific_heat == b.specific_heat && a.thermal_conductivity == b.thermal_conductivity &&
          a.initial_temperature == b.initial_temperature && a.cohesive_energy == b.cohesive_energy &&
-         a.bound_expansion == b.bound_expansion && a.fit_particle_velocity == b.fit_particle_velocity;
+         a.bound_expansion == b.bound_expansion && a.fit_particle_velocity == b.fit_particle_velocity &&
+         a.jc_yield_stress == b.jc_yield_stress && a.jc_hardening == b.jc_hardening &&
+         a.jc_hardening_exponent == b.jc_hardening_exponent && a.jc_rate_coefficient == b.jc_rate_coefficient &&
+         a.jc_thermal_exponent == b.jc_thermal_exponent && a.jc_melt_temperature == b.jc_melt_temperature &&
+         a.jc_room_temperature == b.jc_room_temperature;
 }
 
 const std::string& Scene::material_name(Body b) const {

@@ -37,6 +37,19 @@ struct Material {
   // is counted as outside the equation of state's range (eos.hpp) [m/s].
   double fit_particle_velocity = 6000.0;
 
+  // Johnson-Cook flow stress (strength_model = johnson_cook, johnson_cook.hpp):
+  //   sigma_Y = (A + B eps_p^n) (1 + C ln(rate / 1 /s)) (1 - T*^m),  T* = (T - T_r) / (T_m - T_r).
+  // The defaults are 6061-T6's as commonly tabulated after Johnson and Holmquist (1989); A = 0 marks a
+  // material without Johnson-Cook constants (material_library.cpp).
+  double jc_yield_stress = 324e6;     // A [Pa]
+  double jc_hardening = 114e6;        // B [Pa]
+  double jc_hardening_exponent = 0.42;  // n
+  double jc_rate_coefficient = 0.002;   // C, per e-fold of the equivalent strain rate above 1 /s
+  double jc_thermal_exponent = 1.34;    // m
+  double jc_melt_temperature = 925.0;   // T_m [K]
+  double jc_room_temperature = 298.0;   // T_r [K], where T* = 0
+  bool has_johnson_cook() const { return jc_yield_stress > 0.0; }
+
   // G = E / (2 (1 + nu)): the only elastic constant the deviatoric update uses (physics-notes 1).
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
 

@@ -11,6 +11,7 @@
 
 #include "mpmshock/artificial_viscosity.hpp"
 #include "mpmshock/eos.hpp"
+#include "mpmshock/johnson_cook.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/spall.hpp"
@@ -20,7 +21,8 @@
 namespace mpmshock {
 
 using EquationOfState = std::variant<MieGruneisen>;
-using StrengthLaw = std::variant<NoStrength, VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>>;
+using StrengthLaw =
+    std::variant<NoStrength, VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>, JohnsonCook>;
 using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
 using FailureLaw = std::variant<NoFailure, Spall>;
 using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape>;
