@@ -8,6 +8,7 @@ ShapeChoice shape_of(const Scene& s) {
   switch (s.shape_function) {
     case ShapeFunction::bilinear: return BilinearShape{};
     case ShapeFunction::gimp: return GimpShape{};
+    case ShapeFunction::bspline2_domain: return QuadraticBSplineDomainShape{};
     case ShapeFunction::bspline2: break;
   }
   return QuadraticBSplineShape{};

@@ -77,6 +77,10 @@ compare smoothing_whole "$data/tiny_porous.scene" --set volumetric_smoothing=on 
 compare materials "$data/tiny_porous.scene" --set flyer_material=copper --set flyer_porosity=1 \
   --set target_velocity=0 --set "material.copper.yield_stress=200 MPa" --set spall=on "${probes[@]}" \
   --set "window_height=50 um" --set window_material=lif
+# The 4-node B-spline over the point domains (three shared rows between ranks), in the laboratory
+# frame, with Johnson-Cook strength, conduction and spall.
+compare domain "$data/tiny_porous.scene" --set shape_function=bspline2_domain --set target_velocity=0 \
+  --set strength_model=johnson_cook --set heat_conduction=on --set spall=on "${probes[@]}"
 
 # Restart on another number of ranks: from the middle snapshot of the 1-rank run, on 3 ranks, and
 # from the middle of a 2-rank run on 1 rank: the same files as the run straight through (probes.csv

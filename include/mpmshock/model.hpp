@@ -25,7 +25,7 @@ using StrengthLaw =
     std::variant<NoStrength, VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>, JohnsonCook>;
 using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
 using FailureLaw = std::variant<NoFailure, Spall>;
-using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape>;
+using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape, QuadraticBSplineDomainShape>;
 
 // The strength law a scene calls for in a material, and what it stores per point; `back_stress`:
 // the kinematic form even for isotropic hardening (when the other body needs it, so that both
