@@ -43,11 +43,10 @@ Material with_johnson_cook(Material m, double A, double B, double n, double C, d
   return m;
 }
 
-// A material for which no Johnson-Cook constants are sourced: strength_model = johnson_cook refuses
-// it until a scene gives them (material.NAME.jc_*).
-Material without_johnson_cook(Material m) { return with_johnson_cook(m, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0); }
 
 }  // namespace
+
+Material without_johnson_cook(Material m) { return with_johnson_cook(m, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0); }
 
 const std::vector<LibraryMaterial>& material_library() {
   static const std::vector<LibraryMaterial> library = {

@@ -363,8 +363,8 @@ const std::vector<Key>& keys() {
     k.push_back(choice<ShapeFunction>("shape_function", {{"bilinear", ShapeFunction::bilinear}, {"gimp", ShapeFunction::gimp}, {"bspline2", ShapeFunction::bspline2}, {"bspline2_domain", ShapeFunction::bspline2_domain}},
         "bspline2",
         "bspline2 and gimp (3 x 3 nodes) remove most grid-crossing noise; bspline2_domain, the B-spline averaged "
-        "over each point's domain (4 x 4 nodes, 1.5x the cost), also the noise of compressed material moving "
-        "across the grid (laboratory frame: the strength state behind the shock; docs/accuracy-and-cost.md); "
+        "over each point's domain (4 x 4 nodes, 1.45x the cost per point-step), also the noise of compressed "
+        "material moving across the grid (laboratory frame: the strength state behind the shock; docs/accuracy-and-cost.md); "
         "bilinear: the paper's 4-node cells",
         FIELD(shape_function)));
     k.push_back(quantity("flip_fraction", D::none, closed(0.0, 1.0), "1",
@@ -790,11 +790,17 @@ std::vector<std::string> scene_warnings(const Scene& s) {
   if (s.end_time / s.sample_interval > 100000)
     out.push_back("sample_interval " + format_number(s.sample_interval) + " s writes " +
                   format_number(std::floor(s.end_time / s.sample_interval)) + " rows per region to regions.csv");
-  if (s.effects.plasticity && s.shape_function == ShapeFunction::bspline2 && s.flyer_velocity != s.target_velocity)
+  // The shocked material rests on the grid only where the impact is symmetric: equal speeds and materials.
+  const bool interface_moves = s.flyer_velocity != s.target_velocity ||
+                               !same_constants(s.material_of(Body::flyer), s.material_of(Body::target));
+  const bool at_points = s.shape_function == ShapeFunction::bspline2 || s.shape_function == ShapeFunction::bilinear;
+  if (s.effects.plasticity && at_points && interface_moves)
     out.push_back("the shocked material moves across the grid (flyer_velocity " + format_number(s.flyer_velocity) +
-                  " m/s, target_velocity " + format_number(s.target_velocity) +
-                  " m/s): with bspline2 its deviatoric stress rings below yield (about half at 5 um; the normal "
-                  "stress 1 % low); shape_function = bspline2_domain holds it on the yield surface at 1.5x the cost "
+                  " m/s, target_velocity " + format_number(s.target_velocity) + " m/s, flyer_material " +
+                  s.flyer_material + ", target_material " + s.target_material + "): with shape_function " +
+                  (s.shape_function == ShapeFunction::bspline2 ? "bspline2" : "bilinear") +
+                  " its deviatoric stress rings below yield (about half at 5 um; the normal stress 1 % low); "
+                  "shape_function = bspline2_domain holds it on the yield surface at 1.45x the cost per point-step "
                   "(docs/accuracy-and-cost.md)");
   return out;
 }
@@ -833,7 +839,8 @@ void set_material_key(Scene& scene, const Entry& e) {
   }
   Scene holder;  // the key sets Scene::material: set it on a scene holding this material
   const auto it = scene.materials.find(name);
-  holder.material = it != scene.materials.end() ? it->second : Material{};
+  // A new material starts from aluminium's constants, without its (6061-T6) Johnson-Cook ones.
+  holder.material = it != scene.materials.end() ? it->second : without_johnson_cook(Material{});
   k->set(holder, e.value, e.at);
   scene.materials[name] = holder.material;
 }
@@ -859,10 +866,10 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   const double a = s.particle_spacing();
   if (!is_multiple(s.width, s.cell_size))
     fail("width", "must be a whole number of cells (cell_size = " + format_number(s.cell_size) + " m)");
-  // The stencil's nodes per axis: a periodic column narrower would put one node in a stencil twice.
-  const double stencil = s.shape_function == ShapeFunction::bspline2_domain ? 4.0 : 3.0;
-  const std::string cells = s.shape_function == ShapeFunction::bspline2_domain ? "4 cells (bspline2_domain's stencil)"
-                                                                               : "3 cells (the shape function's stencil)";
+  // The widest stencil's nodes per axis (3 for every shape but bspline2_domain's 4; bilinear's 2 is
+  // held to 3 too): a periodic column narrower would put one node in a stencil twice.
+  const double stencil = std::max(3, support_of(s.shape_function));
+  const std::string cells = stencil > 3.0 ? "4 cells (bspline2_domain's stencil)" : "3 cells (the shape function's stencil)";
   if (s.width < stencil * s.cell_size * (1.0 - 1e-9))
     fail("width", "must be at least " + cells + "; a narrower periodic column would put one node in a stencil twice");
   if (s.dimension == 3 && !is_multiple(s.derived_depth(), s.cell_size))
@@ -947,6 +954,12 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   }
   if (s.strength_model == StrengthModel::johnson_cook) {
     if (!s.effects.plasticity) fail("strength_model", "johnson_cook needs plasticity = on");
+    // Its thermal term softens by the energy model's temperature: the run's must be that one.
+    if (!s.effects.thermal) fail("strength_model", "johnson_cook needs thermal = on (it softens by temperature)");
+    if (s.temperature_model == TemperatureModel::paper)
+      fail("strength_model", "johnson_cook cannot go with temperature_model = paper: the paper's temperature leaves "
+                             "out the compaction heat, and the law softens by the energy model's; use "
+                             "temperature_model = energy (paper_temperature = on reports the paper's beside it)");
     if (s.effects.thermal_softening)
       fail("strength_model", "johnson_cook softens by its own (1 - T*^m) and melts at jc_melt_temperature: use it "
                              "with thermal_softening = off (Steinberg-Guinan is the bilinear law's softening)");
@@ -1265,7 +1278,8 @@ std::string resolved_scene(const Scene& scene) {
 std::string material_library_text() {
   std::string out =
       "# The built-in materials: flyer_material = NAME, target_material = NAME; each line is a key a\n"
-      "# scene may set to change it (material.NAME.KEY = value); a new NAME starts from aluminium.\n";
+      "# scene may set to change it (material.NAME.KEY = value); a new NAME starts from aluminium\n"
+      "# (without its Johnson-Cook constants).\n";
   for (const LibraryMaterial& m : material_library()) {
     out += "\n# " + m.name + ": " + m.source + "\n" + material_lines(m.name, m.constants);
   }

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -93,7 +94,7 @@ Column<D> field(hid_t g, const char* name, std::vector<hsize_t> shape, const cha
 
 template <int D>
 Columns<D> particle_columns(hid_t g, const Particles<D>& layout, const BodyTemperatures* thermal, int level,
-                            const MeltCurve& melt) {
+                            const MeltCurve& melt, const std::array<double, kBodies>& melt_temperature) {
   const Compression always{level > 0 ? level : 1};  // fields that compress >100x: worth it at any setting
   const Compression chosen{level};
   const hsize_t d = D;
@@ -143,9 +144,13 @@ Columns<D> particle_columns(hid_t g, const Particles<D>& layout, const BodyTempe
                          }));
   c.push_back(doubles<D>(g, "plastic_strain", {}, "", "effective plastic strain", chosen,
                          [](const Particles<D>& p, std::size_t q, double* o) { *o = p.has_strength() ? p.eps_p[q] : 0.0; }));
-  c.push_back(doubles<D>(g, "melted", {}, "", "1 where T is at or above the Lindemann melt temperature T_m(J), else 0 (0 with thermal = off)",
-                         chosen, [thermal, melt](const Particles<D>& p, std::size_t q, double* o) {
-                           *o = thermal && thermal->of_point(p, q) >= melt.at(p.material_J(q)) ? 1.0 : 0.0;
+  c.push_back(doubles<D>(g, "melted", {}, "",
+                         "1 where T is at or above the melt temperature: the Lindemann T_m(J), or with strength_model = "
+                         "johnson_cook the body's jc_melt_temperature; else 0 (0 with thermal = off)",
+                         chosen, [thermal, melt, melt_temperature](const Particles<D>& p, std::size_t q, double* o) {
+                           const double fixed = melt_temperature[index_of(p.body[q])];
+                           const double T_m = fixed > 0.0 ? fixed : melt.at(p.material_J(q));
+                           *o = thermal && thermal->of_point(p, q) >= T_m ? 1.0 : 0.0;
                          }));
   c.push_back(doubles<D>(g, "damage", {}, "", "0 intact, rising from 0 while it opens in tension, 1 separated (spall = on; 0 without)",
                          chosen, [](const Particles<D>& p, std::size_t q, double* o) { *o = p.has_failure() ? p.damage[q] : 0.0; }));
@@ -549,7 +554,7 @@ void write_snapshot(const std::string& path, const Particles<D>& p, const BodyTe
                       "create /particles");
     restart.emplace(H5Gcreate2(file->get(), "restart", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                     "create /restart");
-    columns = particle_columns(particles->get(), p, thermal, options.compression, options.melt);
+    columns = particle_columns(particles->get(), p, thermal, options.compression, options.melt, options.melt_temperature);
     for (Column<D>& c : restart_columns(restart->get(), p, run)) columns.push_back(std::move(c));
     for (const Column<D>& c : columns) {
       std::vector<hsize_t> dims{rows};

@@ -40,8 +40,10 @@ void three_layers_are_plane_strain(const char* shape) {
                                        "flyer_height = 0.2 mm\ncell_size = 10 um\nparticles_per_cell = 1\n"
                                        "end_time = 100 ns\ncfl = 0.3\nshape_function = ") + shape + "\n";
   const Particles<2> p2 = final_state<2>(parse_scene(text, "column", {"dimension=2"}));
-  const Particles<3> p3 = final_state<3>(parse_scene(text, "column", {"dimension=3", "depth=30um"}));
-  const std::size_t layers = 3, columns = 4;  // 40 um wide, 30 um deep, 10 um cells, one point each
+  // 40 um wide, 30 um deep (40 um for bspline2_domain's 4-node stencil), 10 um cells, one point each.
+  const std::size_t layers = std::string(shape) == "bspline2_domain" ? 4 : 3, columns = 4;
+  const Particles<3> p3 =
+      final_state<3>(parse_scene(text, "column", {"dimension=3", "depth=" + std::to_string(10 * layers) + "um"}));
   CHECK(p3.size() == layers * p2.size());
   // Lattice ids run row by row, each row layer by layer, each layer column by column.
   std::vector<std::size_t> by_id2(p2.size()), by_id3(p3.size());
@@ -85,7 +87,7 @@ RunResult run(const std::string& scene, const fs::path& out, std::vector<std::st
 int main(int argc, char** argv) {
   if (argc < 2) return 2;
   const std::string porous = argv[1];
-  for (const char* shape : {"bspline2", "gimp", "bilinear"}) three_layers_are_plane_strain(shape);
+  for (const char* shape : {"bspline2", "gimp", "bilinear", "bspline2_domain"}) three_layers_are_plane_strain(shape);
 
   const fs::path root = fs::temp_directory_path() / ("mpmshock_test_3d_" + std::to_string(::getpid()));
   fs::remove_all(root);

@@ -106,6 +106,16 @@ void flow_stress_closed_form(const Material& cu) {
 
 Scene parse(const std::string& text) { return parse_scene(text, "jc.scene"); }
 
+bool parses(const std::string& text) {
+  try {
+    parse(text);
+    return true;
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "unexpected error: %s\n", e.what());
+    return false;
+  }
+}
+
 bool refuses(const std::string& text, const std::string& needle) {
   try {
     parse(text);
@@ -135,8 +145,15 @@ int main() {
   CHECK(std::get<JohnsonCook>(model.strength[index_of(Body::target)]).A == 324e6);
   CHECK(refuses(base + "target_material = tantalum\n", "material.tantalum.jc_yield_stress"));
   CHECK(refuses(base + "window_material = lif\nwindow_height = 50 um\n", "material.lif.jc_yield_stress"));
-  CHECK(!refuses(base + "window_material = lif\nwindow_height = 50 um\nmaterial.lif.jc_yield_stress = 0.2 GPa\n"
-                        "material.lif.jc_thermal_exponent = 1\nmaterial.lif.jc_melt_temperature = 1121 K\n", "x"));
+  CHECK(parses(base + "window_material = lif\nwindow_height = 50 um\nmaterial.lif.jc_yield_stress = 0.2 GPa\n"
+                      "material.lif.jc_thermal_exponent = 1\nmaterial.lif.jc_melt_temperature = 1121 K\n"));
+  // A new material starts from aluminium without its Johnson-Cook constants; bare keys keep them.
+  CHECK(refuses(base + "target_material = steel\nmaterial.steel.density = 7850 kg/m3\n", "material.steel.jc_yield_stress"));
+  CHECK(parses(base + "jc_yield_stress = 0.3 GPa\n"));
+  // The law softens by the energy model's temperature: the run must compute that one.
+  CHECK(refuses(base + "thermal = off\n", "needs thermal = on"));
+  CHECK(refuses(base + "temperature_model = paper\n", "temperature_model = paper"));
+  CHECK(parses(base + "paper_temperature = on\n"));
   CHECK(refuses(base + "thermal_softening = on\n", "strength_model"));
   CHECK(refuses(base + "plasticity = off\n", "needs plasticity = on"));
   CHECK(refuses(base + "hardening_beta = 0.5\n", "hardening_beta"));

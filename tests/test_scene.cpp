@@ -123,6 +123,21 @@ int main() {
       CHECK(std::any_of(w.begin(), w.end(), [](const std::string& s) { return s.find("cfl 0.45 > 0.3") != std::string::npos; }));
       CHECK(scene_warnings(parse_scene(d, "d.scene")).empty());
     }
+    // The shocked material moving across the grid with the B-spline at points: a warning, in the
+    // laboratory frame and for two materials at equal speeds; none with bspline2_domain or symmetric.
+    auto moving = [](const std::string& text) {
+      const std::vector<std::string> w = scene_warnings(parse_scene(text, "d.scene"));
+      return std::any_of(w.begin(), w.end(), [](const std::string& s) { return s.find("moves across the grid") != std::string::npos; });
+    };
+    CHECK(moving("target_velocity = 0\nflyer_velocity = 1000 m/s\n"));
+    CHECK(moving("flyer_material = copper\nflyer_porosity = 1\n"));
+    CHECK(!moving("target_velocity = 0\nflyer_velocity = 1000 m/s\nshape_function = bspline2_domain\n"));
+    CHECK(!moving("target_velocity = 0\nflyer_velocity = 1000 m/s\nplasticity = off\n"));
+    CHECK(!moving(""));
+    // bspline2_domain's 4-node stencil needs a column of 4 cells (3 for the others).
+    CHECK(parse_scene("width = 30 um\ncell_size = 10 um\nporosity = 1\n", "d.scene").width == 30e-6);
+    CHECK_THROWS_WITH(parse_scene("width = 30 um\ncell_size = 10 um\nporosity = 1\nshape_function = bspline2_domain\n", "d.scene"),
+                      "'width'", "at least 4 cells");
     CHECK(parse_scene("dimension = 3\nwidth = 0.2 mm\n", "d.scene").derived_depth() == 0.2e-3);
     CHECK(parse_scene("dimension = 3\ndepth = 0.1 mm\n", "d.scene").derived_depth() == 0.1e-3);
     CHECK_THROWS_WITH(parse_scene("probe.p = point 10 um 20 um 30 um\n", "d.scene"), "d.scene:1", "'probe.p'",

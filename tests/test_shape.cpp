@@ -93,6 +93,33 @@ int main() {
   check_shape<QuadraticBSplineShape>(g, rng);
   check_shape<QuadraticBSplineDomainShape>(g, rng);
   {
+    // The domain shapes at the ends of their half-width range: stretched past the cap (F_aa = 2.5,
+    // lp 1/2), compressed to nearly nothing and rotated a quarter turn (F_aa = 0: the floor).
+    std::uniform_real_distribution<double> ux(0.0, g.width()), uy(g.y_min + 3 * g.h, g.y_max() - 3 * g.h);
+    for (double f : {2.5, 1e-9, 0.0}) {
+      Mat<2> F{};
+      F(0, 0) = F(1, 1) = f;
+      for (int trial = 0; trial < 500; ++trial) {
+        const double x = ux(rng), y = uy(rng);
+        const auto st = QuadraticBSplineDomainShape::at(Vec<2>{{x, y}}, g, F);
+        double sum = 0, gy = 0, ys = 0, dys = 0;
+        for (int b = 0; b < 4; ++b)
+          for (int a = 0; a < 4; ++a) {
+            const double N = st.w[0][a] * st.w[1][b], yi = g.y_min + (st.row0 + b) * g.h;
+            CHECK(std::isfinite(N) && N >= -1e-15);
+            sum += N;
+            gy += st.w[0][a] * st.g[1][b];
+            ys += N * yi;
+            dys += st.w[0][a] * st.g[1][b] * yi;
+          }
+        CHECK_NEAR(sum, 1.0, 1e-12);
+        CHECK_NEAR(gy * g.h, 0.0, 1e-12);
+        CHECK_NEAR(ys, y, 1e-12 * g.width());
+        CHECK_NEAR(dys, 1.0, 1e-10);
+      }
+    }
+  }
+  {
     // A compressed lattice: the domain shapes integrate a uniform stress exactly; the B-spline at
     // points errs by several per cent of it at J = 0.87 (the shocked state at 8 GPa).
     GridGeometry<2> tall = g;
@@ -115,5 +142,9 @@ int main() {
   CHECK(st.column[0] == g.nx - 1 && st.column[1] == 0);
   const auto sb = QuadraticBSplineShape::at(Vec<2>{{1e-9 * g.h, 0.0}}, g);
   CHECK(sb.column[0] == g.nx - 1 && sb.column[1] == 0 && sb.column[2] == 1);
+  const auto sd = QuadraticBSplineDomainShape::at(Vec<2>{{1e-9 * g.h, 0.0}}, g);
+  CHECK(sd.column[0] == g.nx - 1 && sd.column[1] == 0 && sd.column[2] == 1 && sd.column[3] == 2);
+  const auto se = QuadraticBSplineDomainShape::at(Vec<2>{{g.width() * (1 - 1e-9), 0.0}}, g);
+  CHECK(se.column[0] == g.nx - 2 && se.column[1] == g.nx - 1 && se.column[2] == 0 && se.column[3] == 1);
   return check::result();
 }

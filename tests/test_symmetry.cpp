@@ -131,7 +131,7 @@ int main(int argc, char** argv) {
   const std::string porous = argv[1];
   which_scenes_are_symmetric();
   mirror_image_is_the_whole(porous);
-  for (const char* shape : {"bspline2", "gimp", "bilinear"}) solid_point_states_agree(shape);
+  for (const char* shape : {"bspline2", "gimp", "bilinear", "bspline2_domain"}) solid_point_states_agree(shape);
   porous_outputs_agree(porous);
   // Conduction needs the hot spots of collapsed voids: its conductivity raised 100-fold so that in
   // the tiny run heat visibly moves (a diffusion length of a few cells), across the plane too.

@@ -215,20 +215,20 @@ int main() {
                   "strength_model = johnson_cook\njc_yield_stress = %.17g\njc_hardening = %.17g\n"
                   "jc_hardening_exponent = 1\njc_rate_coefficient = 0\njc_thermal_exponent = 10\n",
                   al.yield_stress, al.plastic_modulus());
+    // It runs the bilinear law's run to round-off (its Newton step is exact for a linear law).
     const Measured j = run(300.0, 400e-9, jc);
-    CHECK_REL(j.U1, w.U1, 0.02);
-    CHECK_REL(j.hel, w.sigma1, 0.03);
-    CHECK_REL(j.sigma2, w.sigma2, 0.003);
-    CHECK_REL(j.excess2, w.sigma2 - w.P2, 0.10);
-    CHECK_REL(j.eps_p2, w.eps_p2, 0.10);
-    CHECK_REL(j.rho2, w.rho2, 0.002);
+    CHECK_REL(j.U1, m.U1, 1e-9);
+    CHECK_REL(j.hel, m.hel, 1e-9);
+    CHECK_REL(j.sigma2, m.sigma2, 1e-9);
+    CHECK_REL(j.excess2, m.excess2, 1e-7);
+    CHECK_REL(j.eps_p2, m.eps_p2, 1e-9);
+    CHECK_REL(j.rho2, m.rho2, 1e-9);
   }
   {
     // The laboratory frame (the target at rest, the flyer at 600 m/s): the same states, but the
     // shocked material crosses the grid at 300 m/s. The B-spline at points then rings the plateau
-    // below yield (printed: sigma_n - P about half the exact); integrated over the points' domains
-    // (bspline2_domain) it meets the exact state as the symmetric frame does.
-    run(300.0, 400e-9, "", true);
+    // below yield (measured 2026-12-04: sigma_n - P 73.1 MPa, sigma_n -1.1 %); integrated over the
+    // points' domains (bspline2_domain) it meets the exact state as the symmetric frame does.
     const Measured lab = run(300.0, 400e-9, "shape_function = bspline2_domain\n", true);
     CHECK_REL(lab.U1, w.U1, 0.02);
     CHECK_REL(lab.hel, w.sigma1, 0.03);

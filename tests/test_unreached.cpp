@@ -125,7 +125,7 @@ void restart_keeps_the_boundaries() {
 
 int main(int argc, char** argv) {
   if (argc < 2) return 2;
-  for (const char* shape : {"bspline2", "gimp", "bilinear"}) solid_point_states_agree(shape);
+  for (const char* shape : {"bspline2", "gimp", "bilinear", "bspline2_domain"}) solid_point_states_agree(shape);
   porous_outputs_agree(argv[1]);
   restart_keeps_the_boundaries();
   return check::result();

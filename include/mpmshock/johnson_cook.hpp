@@ -6,7 +6,8 @@
 //   T* = (T - T_r) / (T_m - T_r) in [0, 1];  at T >= T_m the material is molten (s = 0).
 //
 // `rate` is the equivalent strain rate of the step, sqrt(2/3 D':D'), and T the energy model's
-// temperature at the start of the step (both held over the step: the update is explicit). The shear
+// temperature at the step's new volume and energy (its work added, before its own plastic heat);
+// both are held over the step's return map. The shear
 // modulus is the material's constant G. The return map solves the consistency condition
 //   q_trial - 3 G d eps_p = sigma_Y(eps_p + d eps_p)
 // to round-off by Newton's method kept inside the bracket [0, (q_trial - sigma_Y(eps_p)) / 3G]
@@ -63,6 +64,7 @@ struct JohnsonCook {
     if (f <= 0.0) return 0.0;
     const double G3 = 3.0 * shear_modulus;
     // g(x) = q_trial - 3 G x - k (A + B (eps_p + x)^n) falls from f > 0 at x = 0 to <= 0 at f / 3G.
+    // Each pass at least halves the bracket, so 60 passes reach its round-off from any start.
     double lo = 0.0, hi = f / G3, x = hi;
     for (int it = 0; it < 60; ++it) {
       const double g = q_trial - G3 * x - k * hardened(eps_p + x);
@@ -80,8 +82,9 @@ struct JohnsonCook {
   }
 
   // One step: the Jaumann rotation and elastic trial increment s_trial = R s R^T + 2 G D' dt, then
-  // the return map at the step's rate and start-of-step temperature (J and the thermal part of the
-  // specific internal energy). alpha and P are unused (no back stress, no pressure term).
+  // the return map at the step's rate and the temperature of J and the thermal part of the specific
+  // internal energy (update_point passes the new ones). alpha and P are unused (no back stress, no
+  // pressure term).
   template <int D>
   double update(Deviator<D>& s, [[maybe_unused]] Deviator<D>& alpha, double& eps_p, const StrainRate<D>& rate,
                 double dt, double J, double E_thermal, [[maybe_unused]] double P) const {

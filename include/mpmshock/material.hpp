@@ -59,6 +59,11 @@ struct Material {
   }
 };
 
+// The material without Johnson-Cook constants (jc_yield_stress = 0 and the rest 0): what the
+// library's tantalum, LiF and PMMA and a scene's new material are until given them; strength_model =
+// johnson_cook refuses it.
+Material without_johnson_cook(Material m);
+
 // Whether two materials have every constant equal.
 bool same_constants(const Material& a, const Material& b);
 

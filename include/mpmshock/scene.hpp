@@ -20,6 +20,10 @@ enum class UpdateScheme { musl, usl };
 // Shape functions (see shape.hpp): quadratic B-splines (default), uniform GIMP, or the paper's 4-node
 // bilinear cells, whose grid-crossing noise turns into spurious heat in porous runs.
 enum class ShapeFunction { bilinear, gimp, bspline2, bspline2_domain };
+// The nodes per axis a point's stencil touches (shape.hpp's Shape::support).
+constexpr int support_of(ShapeFunction f) {
+  return f == ShapeFunction::bilinear ? 2 : f == ShapeFunction::bspline2_domain ? 4 : 3;
+}
 
 // How the temperature follows from the state (temperature.hpp): energy (default) counts all the heat
 // in E, T = T_H(V) + (E - E_H(V))/c_v; paper counts only plastic work, T = T_H(V) + W_p/c_v, leaving

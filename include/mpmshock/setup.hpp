@@ -43,7 +43,7 @@ struct InitialState {
 // P2G keeps for the passes after it.
 template <int D>
 std::size_t step_scratch_bytes(const Scene& s) {
-  return StripBins::kBytesPerPoint + StencilStore<D>::bytes_per_point(s.shape_function == ShapeFunction::bilinear ? 2 : s.shape_function == ShapeFunction::bspline2_domain ? 4 : 3);
+  return StripBins::kBytesPerPoint + StencilStore<D>::bytes_per_point(support_of(s.shape_function));
 }
 
 // The memory a scene's run needs, estimated from the scene alone (nothing is allocated).

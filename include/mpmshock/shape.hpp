@@ -161,7 +161,6 @@ struct QuadraticBSplineRule : PointRule {
   }
 };
 
-
 // The quadratic B-spline integrated over the point's domain (bspline2_domain): the point is a
 // segment of half-width lp on each axis, the initial half-width stretched by F_aa as in cpGIMP (at
 // most half a cell), and its weight is the B-spline's mean over it,
@@ -173,28 +172,41 @@ struct QuadraticBSplineRule : PointRule {
 // material moving across the grid turns that into noise). 4 nodes per axis.
 struct QuadraticBSplineDomainRule {
   static int base(double u) { return floor_index(u) - 1; }
-  static double half_width(double lp0, double F_aa) { return std::min(0.5, lp0 * std::abs(F_aa)); }
-  static double spline(double s) {
-    const double a = std::abs(s);
-    if (a < 0.5) return 0.75 - s * s;
-    if (a < 1.5) return 0.5 * (1.5 - a) * (1.5 - a);
-    return 0.0;
+  // As cpGIMP's: lp0 |F_aa|, which tiles the material where F is diagonal (the uniaxial strain of
+  // a plane shock), not under shear or rotation; held within [1e-3, 1/2] cells, so that a point
+  // rotated a quarter turn (F_aa = 0) takes the B-spline at a point (the weights divide by lp; at
+  // 1e-3 they differ from the B-spline's by 2e-7 and lose 13 digits to none).
+  static double half_width(double lp0, double F_aa) { return std::clamp(lp0 * std::abs(F_aa), 1e-3, 0.5); }
+  // The B-spline at s and its integral from -3/2, both from t = |s| (the spline is even, the
+  // integral 1/2 + sign(s) times the one from 0): selects, not a chain of branches.
+  [[gnu::always_inline]] static double spline(double s) {
+    const double t = std::abs(s), u = 1.5 - t;
+    const double v = t < 0.5 ? 0.75 - t * t : 0.5 * u * u;
+    return t < 1.5 ? v : 0.0;
   }
-  // The integral of the B-spline from -3/2 to s.
-  static double integral(double s) {
-    if (s <= -1.5) return 0.0;
-    if (s <= -0.5) return (1.5 + s) * (1.5 + s) * (1.5 + s) / 6.0;
-    if (s <= 0.5) return 1.0 / 6.0 + 0.75 * (s + 0.5) - (s * s * s + 0.125) / 3.0;
-    if (s < 1.5) return 1.0 - (1.5 - s) * (1.5 - s) * (1.5 - s) / 6.0;
-    return 1.0;
+  [[gnu::always_inline]] static double integral(double s) {
+    const double t = std::abs(s), u = 1.5 - t;
+    const double half = t < 0.5 ? t * (0.75 - t * t * (1.0 / 3.0)) : 0.5 - u * u * u * (1.0 / 6.0);
+    return 0.5 + std::copysign(t < 1.5 ? half : 0.5, s);
   }
-  static void weights(double d, double lp, double* w, double* dw) {  // d in [1, 2)
+  // With d in [1, 2) and lp <= 1/2 the outer nodes' domain ends lie on the spline's outer pieces
+  // (node 0: r +- lp in [1/2, 5/2); node 3: in (-5/2, -1/2]), where it is 0.5 max(0, 3/2 - |s|)^2;
+  // node 1 takes the general form, node 2 the partition of unity.
+  [[gnu::always_inline]] static void weights(double d, double lp, double* w, double* dw) {  // d in [1, 2)
     const double inv = 0.5 / lp;
-    for (int a = 0; a < 4; ++a) {
-      const double r = d - a;
-      w[a] = (integral(r + lp) - integral(r - lp)) * inv;
-      dw[a] = (spline(r + lp) - spline(r - lp)) * inv;
-    }
+    auto tail = [](double s) { return std::max(0.0, 1.5 - s); };  // 3/2 - |s| on the outer piece, s >= 1/2
+    const double p0 = tail(d - lp), q0 = tail(d + lp);            // node 0 at r = d
+    w[0] = (p0 * p0 * p0 - q0 * q0 * q0) * (1.0 / 6.0) * inv;
+    dw[0] = 0.5 * (q0 * q0 - p0 * p0) * inv;
+    // node 3 at r = d - 3 < 0, by symmetry: M(s) = tail(-s)^3 / 6 and B(s) = tail(-s)^2 / 2 there
+    const double p3 = tail(3.0 - d + lp), q3 = tail(3.0 - d - lp);  // tail(-(r - lp)), tail(-(r + lp))
+    w[3] = (q3 * q3 * q3 - p3 * p3 * p3) * (1.0 / 6.0) * inv;
+    dw[3] = 0.5 * (q3 * q3 - p3 * p3) * inv;
+    const double r1 = d - 1.0;
+    w[1] = (integral(r1 + lp) - integral(r1 - lp)) * inv;
+    dw[1] = (spline(r1 + lp) - spline(r1 - lp)) * inv;
+    w[2] = 1.0 - w[0] - w[1] - w[3];
+    dw[2] = -(dw[0] + dw[1] + dw[3]);
   }
 };
 

@@ -5,6 +5,7 @@
 //   /grid       nodal mass and velocity (only with snapshot_grid = on)
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -38,6 +39,9 @@ struct SnapshotOptions {
   const Grid<D>* grid = nullptr;  // write /grid when given
   RowRange grid_rows;             // the grid's rows that hold this step's values
   MeltCurve melt;                 // for /particles/melted
+  // Johnson-Cook strength: each body's constant melt temperature (jc_melt_temperature), which
+  // /particles/melted then uses; 0: the melt curve.
+  std::array<double, kBodies> melt_temperature{};
   const MirrorImage<D>* mirror = nullptr;  // symmetry = on: write the whole impact (mirror_image.hpp)
   const Comm* comm = nullptr;              // the ranks whose points these are (default: the world)
 };
