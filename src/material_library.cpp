@@ -43,7 +43,6 @@ Material with_johnson_cook(Material m, double A, double B, double n, double C, d
   return m;
 }
 
-
 }  // namespace
 
 Material without_johnson_cook(Material m) { return with_johnson_cook(m, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0); }

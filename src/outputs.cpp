@@ -87,10 +87,9 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run, bool fa
   SnapshotOptions<D> options;
   options.compression = fast ? 0 : static_cast<int>(scene_.snapshot_compression);
   options.melt = melt_curve_of(scene_);
-  if (scene_.effects.plasticity && scene_.strength_model == StrengthModel::johnson_cook)
-    for (const Body b : {Body::flyer, Body::target, Body::window})
-      if (b != Body::window || scene_.has_window())
-        options.melt_temperature[index_of(b)] = scene_.material_of(b).jc_melt_temperature;
+  // A body of Johnson-Cook strength melts at its law's T_m (the model's laws, resolved per body).
+  for (std::size_t b = 0; b < kBodies; ++b)
+    if (const auto* jc = std::get_if<JohnsonCook>(&sim.model().strength[b])) options.melt_temperature[b] = jc->T_m;
   std::optional<Grid<D>> gathered;  // every rank's active rows in the whole grid
   if (scene_.snapshot_grid) {
     gathered.emplace(sim.gathered_grid(options.grid_rows));

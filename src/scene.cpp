@@ -966,7 +966,7 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     // Each body's material needs its constants, in a state where it has strength.
     for (const Body b : {Body::flyer, Body::target, Body::window}) {
       if (!materials_known || (b == Body::window && !s.has_window())) continue;
-      const std::string& name = b == Body::flyer ? s.flyer_material : b == Body::target ? s.target_material : s.window_material;
+      const std::string& name = s.material_name(b);
       const std::string prefix = name == "scene" ? "" : "material." + name + ".";
       const Material& m = s.material_of(b);
       if (!m.has_johnson_cook())

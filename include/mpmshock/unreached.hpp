@@ -14,7 +14,8 @@
 // (P2G, G2P, the re-map P2G and the gradient G2P; a radius is 1.5 cells for bspline2 and gimp, 1
 // for bilinear, 2 for bspline2_domain), 6 cells (8), plus the step's motion (under a cell), so no
 // point the disturbance can reach within a step, and no node such a point reads, lacks the share
-// of a skipped point; the margin is twice that (1.3 times with bspline2_domain). Only the points within 2 margins of a boundary are examined.
+// of a skipped point; the margin is twice that (1.3 times with bspline2_domain). Only the points
+// within 2 margins of a boundary are examined.
 // Material once computed stays computed. Before the impact (t = 0) the reached points are those at
 // the impact plane y = 0.
 //
