@@ -435,7 +435,8 @@ int main(int argc, char** argv) {
   width = std::max(1, static_cast<int>(width / 10e-6 + 0.5)) * 10e-6;  // whole cells
 
   const std::vector<Variant> variants = {
-      {"default (bspline2, MUSL, all effects)", {}},
+      {"default (bspline2_domain, MUSL, all effects)", {}},
+      {"shape bspline2 (the default until 2026-12-05)", {"shape_function=bspline2"}},
       {"plasticity off", {"plasticity=off"}},
       {"artificial viscosity off", {"artificial_viscosity=off"}},
       {"plasticity and viscosity off", {"plasticity=off", "artificial_viscosity=off"}},

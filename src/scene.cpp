@@ -350,9 +350,9 @@ const std::vector<Key>& keys() {
                          FIELD(end_time)));
     k.push_back(quantity("cfl", D::none, open(0.0, 1.0), "auto",
                          "time step = cfl h / (fastest signal: sound speed + viscous speed + particle speed); "
-                         "auto = 0.3 (2D and 3D: larger steps cost accuracy, docs/stability.md)",
+                         "auto = 0.6 with bspline2_domain, 0.3 with the other shapes (larger steps cost accuracy: docs/stability.md)",
                          FIELD(cfl)));
-    k.push_back(quantity("max_volume_change", D::none, Range{0.0, kInf, true, true}, "0.03",
+    k.push_back(quantity("max_volume_change", D::none, Range{0.0, kInf, true, true}, "0.02",
                          "the time step is also at most this over the fastest rate of volume change |tr D| a "
                          "point had in the step before: no point's volume changes by much more than this share in "
                          "one step (a collapsing void's jet; docs/stability.md); 1e9 turns the limit off",
@@ -361,7 +361,7 @@ const std::vector<Key>& keys() {
                                      "musl: stress from the re-mapped velocity, energy from the exact work of the forces (conserved); usl: classic",
                                      FIELD(update_scheme)));
     k.push_back(choice<ShapeFunction>("shape_function", {{"bilinear", ShapeFunction::bilinear}, {"gimp", ShapeFunction::gimp}, {"bspline2", ShapeFunction::bspline2}, {"bspline2_domain", ShapeFunction::bspline2_domain}},
-        "bspline2",
+        "bspline2_domain",
         "bspline2 and gimp (3 x 3 nodes) remove most grid-crossing noise; bspline2_domain, the B-spline averaged "
         "over each point's domain (4 x 4 nodes, 1.45x the cost per point-step), also the noise of compressed "
         "material moving across the grid (laboratory frame: the strength state behind the shock; docs/accuracy-and-cost.md); "
@@ -775,10 +775,11 @@ std::string override_key(const std::string& arg) { return trim(arg.substr(0, arg
 
 std::vector<std::string> scene_warnings(const Scene& s) {
   std::vector<std::string> out;
-  const double cfl_auto = auto_cfl(s.dimension);
+  const double cfl_auto = auto_cfl(s.shape_function);
   if (s.cfl > cfl_auto)
-    out.push_back("cfl " + format_number(s.cfl) + " > " + format_number(cfl_auto) +
-                  ": fewer steps, larger errors (an isentropic release heats twice as much at 0.6: docs/stability.md)");
+    out.push_back("cfl " + format_number(s.cfl) + " > " + format_number(cfl_auto) + " (the automatic value of "
+                  "this shape_function): fewer steps, larger errors (an isentropic release heats about twice "
+                  "as much at twice the step: docs/stability.md)");
   if (s.snapshot_interval > 0.0 && s.end_time / s.snapshot_interval > 1000)
     out.push_back("snapshot_interval " + format_number(s.snapshot_interval) + " s writes " +
                   format_number(std::floor(s.end_time / s.snapshot_interval)) + " snapshot files");
@@ -869,7 +870,8 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   // The widest stencil's nodes per axis (3 for every shape but bspline2_domain's 4; bilinear's 2 is
   // held to 3 too): a periodic column narrower would put one node in a stencil twice.
   const double stencil = std::max(3, support_of(s.shape_function));
-  const std::string cells = stencil > 3.0 ? "4 cells (bspline2_domain's stencil)" : "3 cells (the shape function's stencil)";
+  const std::string cells = stencil > 3.0 ? "4 cells (bspline2_domain's stencil; shape_function = bspline2 needs 3)"
+                                          : "3 cells (the shape function's stencil)";
   if (s.width < stencil * s.cell_size * (1.0 - 1e-9))
     fail("width", "must be at least " + cells + "; a narrower periodic column would put one node in a stencil twice");
   if (s.dimension == 3 && !is_multiple(s.derived_depth(), s.cell_size))
@@ -1192,7 +1194,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   scene.regions = regions.empty() ? paper_regions() : regions;
 
   for (const auto& [key, e] : by_key) scene.origin[key] = e.at.where;
-  if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.dimension);
+  if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.shape_function);
   if (std::isnan(scene.flyer_velocity)) scene.flyer_velocity = scene.velocity;
   if (std::isnan(scene.target_velocity)) scene.target_velocity = scene.velocity;
   if (std::isnan(scene.flyer_porosity)) scene.flyer_porosity = scene.porosity;

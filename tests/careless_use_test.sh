@@ -79,8 +79,8 @@ wait "$pid"
 rc=$?
 [ "$rc" -eq 143 ] || fail "SIGTERM during set-up: exit $rc (124: it did not end), expected 143: $(cat slow.out)"
 
-# 7. A 3D column needs three cells of depth, as of width.
-expect 2 "key 'depth': must be at least 3 cells" -- "$data/tiny_porous_3d.scene" --check --set depth=10um --set cell_size=10um
+# 7. A 3D column needs the stencil's cells of depth (four with the default bspline2_domain), as of width.
+expect 2 "key 'depth': must be at least 4 cells" -- "$data/tiny_porous_3d.scene" --check --set depth=10um --set cell_size=10um
 
 # 8. 3D probes have z columns, and a point probe must lie in the material.
 expect 0 "steps: " -- "$data/tiny_porous_3d.scene" --quiet --set end_time=5ns --set output_dir=G --set probe.s=surface
@@ -125,7 +125,7 @@ expect 2 "is not a key name \(a key name is ASCII letters, digits" -- key.scene 
 
 # 15. Probes that would write a large probes.csv are warned about.
 { cat tiny.scene; for i in $(seq 1 3000); do echo "probe.p$i = surface"; done; } > many_probes.scene
-expect 0 "warning: probes: 3001 probes every step write at least [0-9]+ MB to probes.csv" -- many_probes.scene --check
+expect 0 "warning: probes: 3001 probes every step write at least [0-9]+ MB to probes.csv" -- many_probes.scene --check --set end_time=150ns
 out=$("$bin" tiny.scene --check 2>&1)
 echo "$out" | grep -q "warning: probes" && fail "one probe warned about: $out"
 

@@ -48,14 +48,20 @@ Outcome run(const std::string& text) {
 }  // namespace
 
 int main() {
+  // The blend removes 1 - f of a point's departure from the grid's velocity per step, so its damping
+  // per unit time follows the number of steps: checked at cfl 0.3, the default at 0.6 reported.
+  // Measured (v_y spread, m/s, this scene): bspline2_domain at 0.3 5.85 -> 1.00, at 0.6 7.04 -> 2.96
+  // (mostly from row to row; within a row 1.1 -> 0.3); bspline2 at 0.3 8.5 -> 0.7.
   const std::string solid =
       "porosity = 1\nwidth = 60 um\ntarget_height = 1 mm\nflyer_height = 1 mm\ncell_size = 10 um\nend_time = 120 ns\n";
-  const Outcome flip = run(solid), blend = run(solid + "flip_fraction = 0.95\n");
-  std::printf("solid: v_y spread %.3f m/s with FLIP, %.3f with 0.95 PIC blend; energy error %.1e, %.1e\n", flip.noise,
-              blend.noise, flip.energy_error, blend.energy_error);
-  CHECK(flip.finished && blend.finished);
-  CHECK(blend.noise < 0.2 * flip.noise);
-  CHECK(blend.energy_error < 1e-3);
+  for (const char* step : {"cfl = 0.3\n", ""}) {
+    const Outcome flip = run(solid + step), blend = run(solid + step + "flip_fraction = 0.95\n");
+    std::printf("solid, %s: v_y spread %.3f m/s with FLIP, %.3f with 0.95 PIC blend; energy error %.1e, %.1e\n",
+                *step ? "cfl 0.3" : "default cfl", flip.noise, blend.noise, flip.energy_error, blend.energy_error);
+    CHECK(flip.finished && blend.finished);
+    CHECK(blend.noise < (*step ? 0.2 : 0.5) * flip.noise);
+    CHECK(blend.energy_error < 1e-3);
+  }
 
   const std::string porous =
       "porosity = 1.1\nvoid_radius = 15 um\nwidth = 200 um\ntarget_height = 300 um\nflyer_height = 300 um\n"

@@ -136,7 +136,7 @@ int main() {
   flow_stress_closed_form<3>(cu);
 
   // The scene: the model takes each body's constants; materials without any are refused by name.
-  const std::string base = "porosity = 1\nflyer_height = 0.1 mm\ntarget_height = 0.1 mm\nwidth = 60 um\n"
+  const std::string base = "porosity = 1\nflyer_height = 0.1 mm\ntarget_height = 0.1 mm\nwidth = 80 um\n"
                            "strength_model = johnson_cook\n";
   const Scene two = parse(base + "flyer_material = copper\ntarget_material = aluminium\n");
   const Model model(two);
@@ -159,7 +159,7 @@ int main() {
   CHECK(refuses(base + "hardening_beta = 0.5\n", "hardening_beta"));
   CHECK(refuses(base + "jc_melt_temperature = 250 K\n", "jc_melt_temperature"));
   // Without the key nothing changes: the bilinear law.
-  const Model bilinear(parse("porosity = 1\nflyer_height = 0.1 mm\ntarget_height = 0.1 mm\nwidth = 60 um\n"));
+  const Model bilinear(parse("porosity = 1\nflyer_height = 0.1 mm\ntarget_height = 0.1 mm\nwidth = 80 um\n"));
   CHECK(std::holds_alternative<VonMises<false>>(bilinear.strength[index_of(Body::target)]));
   return check::result();
 }

@@ -80,7 +80,7 @@ int main() {
   CHECK_THROWS_WITH(parse("cell_size = -1 um\n"), "'cell_size'", "out of range");
   CHECK_THROWS_WITH(parse("cfl = 1\n"), "'cfl'", "< 1");
   CHECK_THROWS_WITH(parse("max_volume_change = 0\n"), "t.scene:1", "'max_volume_change'", "> 0");
-  CHECK(parse("").max_volume_change == 0.03);
+  CHECK(parse("").max_volume_change == 0.02);
   CHECK(parse("max_volume_change = 1e9\n").max_volume_change == 1e9);
   CHECK_THROWS_WITH(parse("velocity = 1e999\n"), "'velocity'", "out of the range");
   CHECK_THROWS_WITH(parse("particles_per_cell = 2.5\n"), "'particles_per_cell'", "whole number");
@@ -110,16 +110,20 @@ int main() {
   std::ofstream((dir / "comments.scene").string()) << "# every key at its default\n";
   CHECK(load_scene((dir / "comments.scene").string()).velocity == 1000.0);
   fs::remove_all(dir);
-  // 3D keys: the time step's default by dimension, depth and probes in z.
+  // 3D keys: the time step's default by shape, depth and probes in z.
   {
-    CHECK(parse_scene("", "d.scene").cfl == kCfl2D);
-    CHECK(parse_scene("dimension = 3\n", "d.scene").cfl == kCfl3D);
+    CHECK(kCflDomain == 0.6 && kCfl == 0.3);
+    CHECK(parse_scene("", "d.scene").cfl == kCflDomain);  // bspline2_domain, the default shape
+    CHECK(parse_scene("dimension = 3\n", "d.scene").cfl == kCflDomain);
+    CHECK(parse_scene("shape_function = bspline2\n", "d.scene").cfl == kCfl);
+    CHECK(parse_scene("shape_function = gimp\n", "d.scene").cfl == kCfl);
+    CHECK(parse_scene("dimension = 3\nshape_function = bspline2\n", "d.scene").cfl == kCfl);
     CHECK(parse_scene("dimension = 3\ncfl = 0.25\n", "d.scene").cfl == 0.25);
-    CHECK(parse_scene("dimension = 3\n", "d.scene", {"cfl=auto"}).cfl == kCfl3D);
-    CHECK(resolved_scene(parse_scene("dimension = 3\n", "d.scene")).find("cfl = 0.3\n") != std::string::npos);
+    CHECK(parse_scene("dimension = 3\n", "d.scene", {"cfl=auto"}).cfl == kCflDomain);
+    CHECK(resolved_scene(parse_scene("dimension = 3\n", "d.scene")).find("cfl = 0.6\n") != std::string::npos);
     // Above the automatic value, in either dimension, a warning says what a larger step costs.
     for (const char* d : {"", "dimension = 3\n"}) {
-      const std::vector<std::string> w = scene_warnings(parse_scene(std::string(d) + "cfl = 0.45\n", "d.scene"));
+      const std::vector<std::string> w = scene_warnings(parse_scene(std::string(d) + "cfl = 0.45\nshape_function = bspline2\n", "d.scene"));
       CHECK(std::any_of(w.begin(), w.end(), [](const std::string& s) { return s.find("cfl 0.45 > 0.3") != std::string::npos; }));
       CHECK(scene_warnings(parse_scene(d, "d.scene")).empty());
     }
@@ -129,15 +133,15 @@ int main() {
       const std::vector<std::string> w = scene_warnings(parse_scene(text, "d.scene"));
       return std::any_of(w.begin(), w.end(), [](const std::string& s) { return s.find("moves across the grid") != std::string::npos; });
     };
-    CHECK(moving("target_velocity = 0\nflyer_velocity = 1000 m/s\n"));
-    CHECK(moving("flyer_material = copper\nflyer_porosity = 1\n"));
-    CHECK(!moving("target_velocity = 0\nflyer_velocity = 1000 m/s\nshape_function = bspline2_domain\n"));
+    CHECK(moving("target_velocity = 0\nflyer_velocity = 1000 m/s\nshape_function = bspline2\n"));
+    CHECK(moving("flyer_material = copper\nflyer_porosity = 1\nshape_function = bilinear\n"));
+    CHECK(!moving("target_velocity = 0\nflyer_velocity = 1000 m/s\n"));  // bspline2_domain, the default
     CHECK(!moving("target_velocity = 0\nflyer_velocity = 1000 m/s\nplasticity = off\n"));
     CHECK(!moving(""));
     // bspline2_domain's 4-node stencil needs a column of 4 cells (3 for the others).
-    CHECK(parse_scene("width = 30 um\ncell_size = 10 um\nporosity = 1\n", "d.scene").width == 30e-6);
-    CHECK_THROWS_WITH(parse_scene("width = 30 um\ncell_size = 10 um\nporosity = 1\nshape_function = bspline2_domain\n", "d.scene"),
-                      "'width'", "at least 4 cells");
+    CHECK(parse_scene("width = 30 um\ncell_size = 10 um\nporosity = 1\nshape_function = bspline2\n", "d.scene").width == 30e-6);
+    CHECK_THROWS_WITH(parse_scene("width = 30 um\ncell_size = 10 um\nporosity = 1\n", "d.scene"),
+                      "'width'", "at least 4 cells", "shape_function = bspline2 needs 3");
     CHECK(parse_scene("dimension = 3\nwidth = 0.2 mm\n", "d.scene").derived_depth() == 0.2e-3);
     CHECK(parse_scene("dimension = 3\ndepth = 0.1 mm\n", "d.scene").derived_depth() == 0.1e-3);
     CHECK_THROWS_WITH(parse_scene("probe.p = point 10 um 20 um 30 um\n", "d.scene"), "d.scene:1", "'probe.p'",

@@ -102,12 +102,12 @@ struct Scene {
   std::int64_t particles_per_cell = 2;
   double grid_margin = -1.0;  // < 0: automatic (see derived_grid_margin)
   double end_time = 1e-6;
-  double cfl = -1.0;  // < 0 until parsed: automatic, kCfl2D or kCfl3D by dimension
+  double cfl = -1.0;  // < 0 until parsed: automatic, auto_cfl(shape_function)
   // The largest relative volume change |tr D| dt of a point in one step: the step is also at most
   // this over the fastest rate of volume change (a collapsing void's jet).
-  double max_volume_change = 0.03;
+  double max_volume_change = 0.02;
   UpdateScheme update_scheme = UpdateScheme::musl;
-  ShapeFunction shape_function = ShapeFunction::bspline2;
+  ShapeFunction shape_function = ShapeFunction::bspline2_domain;
   double spall_strength = 1.2e9;  // [Pa] tension at which a point fails (spall = on)
   double spall_void_fraction = 0.15;  // void fraction at which a failed point separates (spall.hpp)
   SpallCriterion spall_criterion = SpallCriterion::neighbourhood;
@@ -182,13 +182,17 @@ struct Scene {
   double points_across() const;
 };
 
-// The default Courant numbers (docs/stability.md). In 2D every hard case holds to 0.99 once
-// max_volume_change bounds the step of a collapsing void's jet; 0.3 because the error of a larger
-// step is not small (an isentropic release heats twice as much at 0.6). 3D: every 3D hard case and
-// the r/4 collapse-focus column hold at 0.3 (0.2 until 2026-12-04, when 3D jetting had stopped at
-// 0.25), so both dimensions take the same step for the same accuracy.
-constexpr double kCfl2D = 0.3, kCfl3D = 0.3;
-constexpr double auto_cfl(int dimension) { return dimension == 3 ? kCfl3D : kCfl2D; }
+// The default Courant numbers (docs/stability.md), by the shape function's measured error. In 2D
+// every hard case holds to 0.99 once max_volume_change bounds the step of a collapsing void's jet.
+// With the B-spline at points (and gimp, bilinear) 0.3, because the error of a larger step is not
+// small (an isentropic release heats 74 K at 0.6 for 40 K at 0.3, test_release). The B-spline over
+// the point domains heats 21 K at 0.6 (9 K at 0.3) and keeps the solid plateau within 0.2 %, so
+// it takes 0.6: half the steps (the default since 2026-12-05). 3D likewise: every 3D hard case and
+// the r/4 collapse-focus column hold at 0.6 with it (the column's band 1.4 K cooler and 0.6 % higher
+// in pressure than at 0.3); with the others 0.3 (0.2 until 2026-12-04, when 3D jetting had stopped
+// at 0.25).
+constexpr double kCfl = 0.3, kCflDomain = 0.6;
+constexpr double auto_cfl(ShapeFunction shape) { return shape == ShapeFunction::bspline2_domain ? kCflDomain : kCfl; }
 
 // A scene error names the file, the line and the key: "scene.cfg:12: key 'porosity': ...".
 class SceneError : public std::runtime_error {

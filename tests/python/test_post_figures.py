@@ -21,7 +21,7 @@ from mpmshock_post.hist import QUANTITIES as HIST_QUANTITIES
 
 matplotlib.use("Agg")
 
-RESOLUTION = ("cell 10 µm", "2 × 2 points per cell", "bspline2 shape functions")
+RESOLUTION = ("cell 10 µm", "2 × 2 points per cell", "bspline2_domain shape functions")
 PROBES = ("probe.free_surface=surface", "probe.p1=point 30um 150um")
 
 
