@@ -129,7 +129,7 @@ Outcome run(const std::string& extra, bool plasticity = false) {
   return out;
 }
 
-// How many points of each body have failed at the end of a run (10 um cells, 40 um wide).
+// How many points of each body have failed at the end of a run (40 um wide; the caller sets the cells).
 struct Flyer {
   std::size_t flyer = 0, target = 0;
 };

@@ -17,8 +17,9 @@ namespace mpmshock {
 // energy update the exact work of the step's forces (kinetic + internal energy conserved).
 enum class UpdateScheme { musl, usl };
 
-// Shape functions (see shape.hpp): quadratic B-splines (default), uniform GIMP, or the paper's 4-node
-// bilinear cells, whose grid-crossing noise turns into spurious heat in porous runs.
+// Shape functions (see shape.hpp): the quadratic B-spline over each point's domain (bspline2_domain,
+// the default), the quadratic B-spline at points (bspline2), cpGIMP, or the paper's 4-node bilinear
+// cells, whose grid-crossing noise turns into spurious heat in porous runs.
 enum class ShapeFunction { bilinear, gimp, bspline2, bspline2_domain };
 // The nodes per axis a point's stencil touches (shape.hpp's Shape::support).
 constexpr int support_of(ShapeFunction f) {

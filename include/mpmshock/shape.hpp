@@ -12,7 +12,11 @@
 //             (at most half a cell), so points that are compressed keep tiling the material; the
 //             gradient is continuous, 3 x 3 nodes. (Uniform GIMP, with lp fixed, makes a
 //             compressed block heat as it crosses the grid: README, "Method".)
-//   bspline2  quadratic B-spline, C1 on the grid, 3 x 3 nodes: the least noise.
+//   bspline2  quadratic B-spline at the points, C1 on the grid, 3 x 3 nodes (the default until
+//             2026-12-05); a compressed lattice of points does not integrate a uniform stress with it.
+//   bspline2_domain  the quadratic B-spline averaged over each point's domain (half-widths as
+//             cpGIMP's), 4 x 4 nodes, the default: the least noise (a fifth of bspline2's
+//             point pressure scatter) and the strength state right where material crosses the grid.
 #pragma once
 
 #include <algorithm>
