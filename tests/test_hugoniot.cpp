@@ -59,9 +59,8 @@ void run_case(const Case& c) {
   std::snprintf(text, sizeof text,
                 "velocity = %g m/s\nporosity = 1\nwidth = 40 um\ntarget_height = 1.6 mm\nflyer_height = 1.6 mm\n"
                 "cell_size = 10 um\nend_time = 200 ns\nshape_function = %s\nplasticity = %s\nhardening_beta = %g\n"
-                "symmetry = off\ndimension = %d\ndepth = %d um\n",  // the whole impact, to check its momentum
-                v, c.shape, c.plasticity ? "on" : "off", c.hardening_beta, D,
-                std::string(c.shape) == "bspline2_domain" ? 40 : 30);  // at least its 4-node stencil
+                "symmetry = off\ndimension = %d\ndepth = 30 um\n",  // the whole impact, to check its momentum
+                v, c.shape, c.plasticity ? "on" : "off", c.hardening_beta, D);
   const Scene scene = parse_scene(text, "hugoniot");
   InitialState<D> initial = build_initial_state<D>(scene);
   Simulation<D> sim(scene, initial.grid, std::move(initial.particles));
@@ -151,10 +150,9 @@ int main(int argc, char** argv) {
   // The domain B-spline in 2D only: test_3d checks that a 3D column gives the 2D run to round-off
   // with it (measured here: the same numbers to the digits printed); in 3D its case took several
   // times bspline2's wall time (1.85x per point-step, a 4-cell depth for 3).
+  for (double v : {500.0, 1000.0, 2000.0}) run({2, "bspline2_domain", v, true, true});
   for (int dimension : {2, 3})
-    for (const char* shape : {"bspline2_domain", "bspline2"})
-      for (double v : {500.0, 1000.0, 2000.0})
-        if (dimension == 2 || std::string(shape) == "bspline2") run({dimension, shape, v, true, true});
+    for (double v : {500.0, 1000.0, 2000.0}) run({dimension, "bspline2", v, true, true});
   run({2, "bspline2", 1000.0, false, true});
   run({2, "bspline2", 1000.0, true, true, 0.5});  // mixed hardening: the back-stress path
   run({2, "gimp", 1000.0, true, true});
