@@ -380,10 +380,11 @@ const std::vector<Key>& keys() {
                      "each point's rate of volume change from the grid's mass-weighted field of it, so the points "
                      "of a cell compress together and no single point is over-compressed (collapse foci, ringing)",
                      FIELD(volumetric_smoothing)));
-    k.push_back(quantity("av_linear", D::none, non_negative(), "0.2",
-                         "linear artificial viscosity coefficient A1 (0.75 gives the exact elastic-plastic two-wave "
-                         "state behind the shock, tests/test_two_wave.cpp; 0.2 rings it below yield, but heats the "
-                         "material near the impact plane less: docs/method.md)", FIELD(av_linear)));
+    k.push_back(quantity("av_linear", D::none, non_negative(), "auto",
+                         "linear artificial viscosity coefficient A1; auto = 0.6 where every body is solid (the exact "
+                         "elastic-plastic two-wave state behind the shock, tests/test_two_wave.cpp; 0.2 rings it below "
+                         "yield), 0.2 where a body is porous (its temperatures nearer their converged values): "
+                         "docs/method.md", FIELD(av_linear)));
     k.push_back(quantity("av_quadratic", D::none, non_negative(), "2",
                          "quadratic artificial viscosity coefficient A2", FIELD(av_quadratic)));
     k.push_back(quantity("av_heat_flux", D::none, closed(0.0, 100.0), "10",
@@ -1194,10 +1195,11 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   scene.regions = regions.empty() ? paper_regions() : regions;
 
   for (const auto& [key, e] : by_key) scene.origin[key] = e.at.where;
-  if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.shape_function);
   if (std::isnan(scene.flyer_velocity)) scene.flyer_velocity = scene.velocity;
   if (std::isnan(scene.target_velocity)) scene.target_velocity = scene.velocity;
   if (std::isnan(scene.flyer_porosity)) scene.flyer_porosity = scene.porosity;
+  if (scene.av_linear < 0.0) scene.av_linear = auto_av_linear(scene.porosity == 1.0 && scene.flyer_porosity == 1.0);
+  if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.shape_function);
   check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; }, errors);
   errors.throw_if_any();
   if (scene.symmetry == Symmetry::automatic)

@@ -275,16 +275,18 @@ int main() {
   // With strength the normal stress in the target exceeds its pressure by about (2/3) Y.
   CHECK(cu_al.sigma_target > cu_al.P_target);
   // Both bodies with Johnson-Cook strength, each of its own constants (OFHC copper, 6061-T6): the
-  // shocked state stays the impedance match's within 1 % (measured -0.45 % in the target's pressure),
-  // its normal stress above the pressure.
+  // shocked state stays the impedance match's within 1 % in velocity and normal stress (measured
+  // -0.27 % and +0.59 %). The target's deviator is on the yield surface, sigma_n - P about (2/3) A
+  // (A = 324 MPa: 216 MPa; measured 199), so its pressure lies that far below the hydrodynamic
+  // match (-1.09 %). Until 2026-12-05 the porous scenes' A1 = 0.2 rang it off the surface (P -0.45 %).
   const Measured jc = run("copper", "aluminium", 1000.0, true, 150e-9, "strength_model = johnson_cook\n");
   {
     const Material cu = find_library_material("copper")->constants, al;
-    const double u = interface_velocity(cu, al, 1000.0);
-    CHECK_REL(jc.P_target, hugoniot_pressure(al, u), 0.01);
+    const double u = interface_velocity(cu, al, 1000.0), P_match = hugoniot_pressure(al, u);
+    CHECK_REL(jc.sigma_target, P_match, 0.01);
     CHECK_REL(jc.u_target, u, 0.01);
-    CHECK_REL(jc.P_flyer, hugoniot_pressure(al, u), 0.01);
-    CHECK(jc.sigma_target > jc.P_target);
+    CHECK_REL(jc.P_flyer, P_match, 0.01);
+    CHECK_REL(jc.sigma_target - jc.P_target, (2.0 / 3.0) * al.jc_yield_stress, 0.15);
   }
   CHECK(state_of("") == state_of("flyer_material = aluminium\ntarget_material = aluminium\n"));
   // The windows experimenters use behind a sample: LiF (nearly aluminium's impedance: a slight

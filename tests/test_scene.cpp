@@ -120,6 +120,17 @@ int main() {
     CHECK(parse_scene("dimension = 3\nshape_function = bspline2\n", "d.scene").cfl == kCfl);
     CHECK(parse_scene("dimension = 3\ncfl = 0.25\n", "d.scene").cfl == 0.25);
     CHECK(parse_scene("dimension = 3\n", "d.scene", {"cfl=auto"}).cfl == kCflDomain);
+    // The default A1 by the bodies (porous: the default porosity 1.03, or either body's); the
+    // automatic step does not follow it.
+    CHECK(parse_scene("", "d.scene").av_linear == kAvLinearPorous);
+    CHECK(parse_scene("porosity = 1\nflyer_porosity = 1.1\n", "d.scene").av_linear == kAvLinearPorous);
+    CHECK(parse_scene("porosity = 1.1\nflyer_porosity = 1\n", "d.scene").av_linear == kAvLinearPorous);
+    const Scene solid = parse_scene("porosity = 1\n", "d.scene");
+    CHECK(solid.av_linear == kAvLinearSolid && kAvLinearSolid == 0.6 && kAvLinearPorous == 0.2);
+    CHECK(solid.cfl == kCflDomain);
+    CHECK(parse_scene("porosity = 1\n", "d.scene", {"av_linear=auto"}).av_linear == kAvLinearSolid);
+    CHECK(parse_scene("porosity = 1\nav_linear = 0.3\n", "d.scene").av_linear == 0.3);
+    CHECK(scene_warnings(solid).empty());
     CHECK(resolved_scene(parse_scene("dimension = 3\n", "d.scene")).find("cfl = 0.6\n") != std::string::npos);
     // Above the automatic value, in either dimension, a warning says what a larger step costs.
     for (const char* d : {"", "dimension = 3\n"}) {

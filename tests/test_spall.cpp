@@ -228,7 +228,9 @@ int main() {
   const Outcome at_once = run("spall = on\nspall_strength = 1.2 GPa\nspall_void_fraction = 0\n");
   report("spall_void_fraction = 0", at_once);
   CHECK(at_once.failed == at_once.separated);
-  CHECK(at_once.pullback_strength < 0.9e9);
+  // Letting go at once reads a pullback well below the gradual opening's: 0.94 GPa against 1.21 at
+  // the default A1 (0.6 for these solid plates), 0.5-0.7 against 1.17 at A1 = 0.2 (measured).
+  CHECK(at_once.pullback_strength < 0.85 * spall.pullback_strength);
 
   const Outcome intact = run("");
   report("spall off", intact);
@@ -238,14 +240,15 @@ int main() {
   // The artefact the neighbourhood criterion removes: behind a 400 m/s impact of a 0.3 mm flyer (with
   // strength), the released flyer holds a two-cell pattern of point stresses about a mean near
   // zero; judged point by point its crests fail (with bspline2 at cfl 0.3: 64 flyer points at 10 um
-  // cells, 48 at 5, 96 at 2.5; with the default bspline2_domain at cfl 0.6: 72 at 10 um, 96 at 5),
-  // judged by the neighbourhood none does, and the target's spall zone forms as before. Not at
-  // 10 um cells with a step of cfl 0.45 or more: there the release overshoots to ~1.5 GPa of tension
-  // 15 um under the flyer's back surface, and the free-surface row, whose neighbourhood is one-sided,
-  // opens (8 points; none at cfl 0.3, with av_linear = 0.3, or at 5 and 2.5 um). Hence 5 um here.
+  // cells, 48 at 5, 96 at 2.5; with bspline2_domain at cfl 0.6 and A1 = 0.2: 72 at 10 um, 96 at 5;
+  // at a solid scene's default A1 = 0.6: 40 at 10 um, 64 at 5), judged by the neighbourhood none
+  // does, and the target's spall zone forms as before. With A1 = 0.2 at 10 um from cfl 0.45 the
+  // ringing release overshot to ~1.5 GPa of tension 22.5 um inside the flyer's back surface and
+  // opened a row of 8 points there (none at cfl 0.3 or at 5 and 2.5 um; this case ran at 5 um from
+  // 2026-12-05 until A1 = 0.6 removed it the same day).
   const std::string flyer_case =
       "velocity = 400 m/s\nflyer_height = 0.3 mm\ntarget_height = 1.5 mm\nend_time = 500 ns\nspall = on\n"
-      "cell_size = 5 um\n";
+      "cell_size = 10 um\n";
   const Flyer flyer_by_point = failures_by_body(flyer_case + "spall_criterion = point\n");
   const Flyer flyer_by_neighbourhood = failures_by_body(flyer_case);
   std::printf("400 m/s, 0.3 mm flyer: failed flyer / target points, point criterion %zu / %zu, neighbourhood %zu / %zu\n",

@@ -14,8 +14,11 @@
 // time, its plateau's normal stress (the HEL), and the plastic plateau's normal stress, its excess
 // over the pressure (the deviator on the yield surface) and plastic strain.
 //
-// With av_linear = 0.75; the default 0.2 fails it (the ringing plastic front leaves the plateau
-// below yield: sigma_n - P 44.5 MPa for 88.7 at 300 m/s, 38 MPa for 107 at 1000 m/s with 0.5).
+// At the defaults of a solid scene (av_linear = auto = 0.6, cfl = auto = 0.6: scene.hpp). With
+// the porous scenes' A1 = 0.2 it fails (measured 2026-12-05, bspline2_domain, 5 um): the ringing
+// plastic front leaves the plateau below yield, sigma_n - P 46.0 MPa for 88.7 at 300 m/s and
+// 4.0 MPa for 107.2 at 1000 m/s, and the points yield back and forth (eps_p 0.197 for 0.106); A1 =
+// 0.5 holds 300 m/s (88.2 MPa) but not 1000 m/s (43.4 MPa), 0.6 holds both (the last case below).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -114,7 +117,7 @@ Measured run(double v, double end_time, const std::string& law = "", bool labora
   std::snprintf(text, sizeof text,
                 "flyer_velocity = %g m/s\ntarget_velocity = %g m/s\nporosity = 1\nwidth = 20 um\n"
                 "target_height = 3.2 mm\nflyer_height = 3.2 mm\n"
-                "cell_size = 5 um\nend_time = %g s\nav_linear = 0.75\n%s",
+                "cell_size = 5 um\nend_time = %g s\n%s",
                 laboratory ? 2 * v : v, laboratory ? 0.0 : v, end_time, law.c_str());
   const double ahead = laboratory ? 0.0 : v;  // the speed of the material ahead of the precursor
   const Scene scene = parse_scene(text, "two-wave");
@@ -227,9 +230,10 @@ int main() {
   {
     // The laboratory frame (the target at rest, the flyer at 600 m/s): the same states, but the
     // shocked material crosses the grid at 300 m/s. The B-spline at points then rings the plateau
-    // below yield (measured 2026-12-04: sigma_n - P 73.1 MPa, sigma_n -1.1 %); integrated over the
-    // points' domains (bspline2_domain) it meets the exact state as the symmetric frame does.
-    const Measured lab = run(300.0, 400e-9, "shape_function = bspline2_domain\n", true);
+    // below yield (measured 2026-12-04 at A1 = 0.75: sigma_n - P 73.1 MPa, sigma_n -1.1 %); integrated
+    // over the points' domains (bspline2_domain, the default) it meets the exact state as the
+    // symmetric frame does.
+    const Measured lab = run(300.0, 400e-9, "", true);
     CHECK_REL(lab.U1, w.U1, 0.02);
     CHECK_REL(lab.hel, w.sigma1, 0.03);
     CHECK_REL(lab.sigma2, w.sigma2, 0.003);
@@ -238,12 +242,15 @@ int main() {
     CHECK_REL(lab.rho2, w.rho2, 0.002);
   }
   {
-    // 1000 m/s: the plastic shock overruns the precursor's plateau within ~100 ns at 5 um
+    // 1000 m/s: the plastic shock overruns the precursor's plateau within ~100 ns at 5 um. In the
+    // laboratory frame too (measured: sigma_n - P 105.0 MPa symmetric, 102.6 laboratory, for 107.2).
     const TwoWave w1 = exact_two_wave(al, 1000.0);
-    const Measured m1 = run(1000.0, 250e-9);
-    CHECK_REL(m1.sigma2, w1.sigma2, 0.003);
-    CHECK_REL(m1.eps_p2, w1.eps_p2, 0.10);
-    CHECK_REL(m1.excess2, w1.sigma2 - w1.P2, 0.10);
+    for (const bool laboratory : {false, true}) {
+      const Measured m1 = run(1000.0, 250e-9, "", laboratory);
+      CHECK_REL(m1.sigma2, w1.sigma2, 0.003);
+      CHECK_REL(m1.eps_p2, w1.eps_p2, 0.10);
+      CHECK_REL(m1.excess2, w1.sigma2 - w1.P2, 0.10);
+    }
   }
   return check::result();
 }

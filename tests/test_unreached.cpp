@@ -64,7 +64,9 @@ void solid_point_states_agree(const char* shape) {
       }
       std::printf("%-8s %zu of %zu points unreached at 100 ns, %.1f %% of the point-steps skipped, position "
                   "error %.1e m\n", shape, unreached, n, 100.0 * skipped_share, drift);
-      CHECK(unreached > n / 5);
+      // The precursor (c_L 6.45 km/s) has run 0.65 mm of the 1.6 mm target; with its foot (wider at
+      // a solid scene's A1 = 0.6) and the margin, 18-21 % of the points are still untouched.
+      CHECK(unreached > n / 6);
       CHECK(moved == 0);
       CHECK(drift < 1e-15);
     } else {

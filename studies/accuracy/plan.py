@@ -162,6 +162,9 @@ def _truth(exact):
 
 # The shape the study's porous, sensitivity and answer parts run (the default until 2026-12-05).
 MAIN_SHAPE = "bspline2"
+# The linear viscosity of its solid plates: the default for every scene until 2026-12-05, when a
+# solid scene's automatic A1 became 0.6 (porous scenes keep 0.2, which its other parts take).
+SOLID_AV_LINEAR = "0.2"
 
 
 # --- part 1: solid plates -------------------------------------------------------------------------
@@ -176,7 +179,8 @@ def solid_series(plan, material):
         exact = hugoniot.solid_shock(v, material)
         t0, t1, t_release = plateau_window(exact, material, plan.solid_height, y2, 4 * plan.solid_cells[0],
                                            plan.solid_end)
-        scene = {"velocity": f"{v:g} m/s", "porosity": "1", "plasticity": "off", "width": _um(plan.solid_width),
+        scene = {"velocity": f"{v:g} m/s", "porosity": "1", "plasticity": "off", "av_linear": SOLID_AV_LINEAR,
+                 "width": _um(plan.solid_width),
                  "target_height": _um(plan.solid_height), "flyer_height": _um(plan.solid_height),
                  "end_time": _ns(t1), "sample_interval": "1 ns", "snapshot_interval": "0",
                  f"region.{REGION}": f"band {_um(y1)} {_um(y2)}"}
