@@ -1149,7 +1149,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   Scene scene;
   scene.source = name;
   for (const Key& k : keys()) {
-    if (k.default_text == "auto") continue;  // grid_margin, depth, cfl: a sentinel in Scene stands for auto
+    if (k.default_text == "auto") continue;  // grid_margin, depth, cfl, av_linear, ...: a sentinel in Scene stands for auto
     k.set(scene, k.default_text, Origin{"default"});
   }
   std::vector<RegionSpec> regions;

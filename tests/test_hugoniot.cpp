@@ -147,8 +147,9 @@ int main(int argc, char** argv) {
   };
   // The default shape function (bspline2_domain at its cfl 0.6) and bspline2 (the default until
   // 2026-12-05, at its 0.3) at the three speeds of physics-notes section 3, with strength (it adds
-  // ~ (2/3) sigma_Y = 0.08 GPa to the normal stress, so the pressure lies ~0.3 % below the
-  // hydrodynamic P_H: inside the tolerance; test_two_wave checks the exact state) and without.
+  // ~ (2/3) sigma_Y = 0.08 GPa to the normal stress, so the pressure lies 0.3-0.6 % below the
+  // hydrodynamic P_H at 1000-500 m/s: inside the tolerance; test_two_wave checks the exact state)
+  // and without.
   // The domain B-spline in 2D only: test_3d checks that a 3D column gives the 2D run to round-off
   // with it (measured here: the same numbers to the digits printed); in 3D its case took several
   // times bspline2's wall time (1.85x per point-step, a 4-cell depth for 3).

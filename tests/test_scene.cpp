@@ -130,6 +130,7 @@ int main() {
     CHECK(solid.cfl == kCflDomain);
     CHECK(parse_scene("porosity = 1\n", "d.scene", {"av_linear=auto"}).av_linear == kAvLinearSolid);
     CHECK(parse_scene("porosity = 1\nav_linear = 0.3\n", "d.scene").av_linear == 0.3);
+    CHECK(resolved_scene(solid).find("av_linear = 0.6\n") != std::string::npos);  // what a restart reads back
     CHECK(scene_warnings(solid).empty());
     CHECK(resolved_scene(parse_scene("dimension = 3\n", "d.scene")).find("cfl = 0.6\n") != std::string::npos);
     // Above the automatic value, in either dimension, a warning says what a larger step costs.

@@ -228,9 +228,9 @@ int main() {
   const Outcome at_once = run("spall = on\nspall_strength = 1.2 GPa\nspall_void_fraction = 0\n");
   report("spall_void_fraction = 0", at_once);
   CHECK(at_once.failed == at_once.separated);
-  // Letting go at once reads a pullback well below the gradual opening's: 0.94 GPa against 1.21 at
-  // the default A1 (0.6 for these solid plates), 0.5-0.7 against 1.17 at A1 = 0.2 (measured).
-  CHECK(at_once.pullback_strength < 0.85 * spall.pullback_strength);
+  // Letting go at once reads a pullback below the gradual opening's: 0.94 GPa against 1.21 at the
+  // default A1 (0.6 for these solid plates: 0.78 of it), 0.5-0.7 against 1.17 at A1 = 0.2 (measured).
+  CHECK(at_once.pullback_strength < 0.8 * spall.pullback_strength);
 
   const Outcome intact = run("");
   report("spall off", intact);

@@ -243,7 +243,7 @@ int main() {
   }
   {
     // 1000 m/s: the plastic shock overruns the precursor's plateau within ~100 ns at 5 um. In the
-    // laboratory frame too (measured: sigma_n - P 105.0 MPa symmetric, 102.6 laboratory, for 107.2).
+    // laboratory frame too (measured: sigma_n - P 102.5 MPa symmetric, 99.3 laboratory, for 107.2).
     const TwoWave w1 = exact_two_wave(al, 1000.0);
     for (const bool laboratory : {false, true}) {
       const Measured m1 = run(1000.0, 250e-9, "", laboratory);

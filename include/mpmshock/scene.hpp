@@ -188,8 +188,8 @@ struct Scene {
 // behind a plastic shock below yield (at 1000 m/s and 5 um, sigma_n - P 4 MPa for the exact 107.2 at
 // 0.2, 102.5 at 0.6; tests/test_two_wave.cpp) and opens spurious spall rows. Where a body is porous,
 // 0.2: the band temperatures of a porous run rise with A1 at a given cell, and 0.2 is the nearer to
-// their converged value at 5 um (2D, delta 1.1, 20 um voids: 610 K at 0.2, 660 K at 0.6, both
-// tending to about 625 K by 1.25 um).
+// their finest value at 5 um (2D, delta 1.1, 20 um voids, one layout: 610 K at 0.2 and 660 K at 0.6
+// at 5 um, 620 K and 632 K at 1.25 um).
 constexpr double kAvLinearSolid = 0.6, kAvLinearPorous = 0.2;
 constexpr double auto_av_linear(bool every_body_solid) { return every_body_solid ? kAvLinearSolid : kAvLinearPorous; }
 
