@@ -109,7 +109,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   else
     out << "set by sound (cfl " << s.cfl << ", fastest signal " << signal << " m/s)";
   out << "; at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
-  if (s.porosity == 1.0 && s.flyer_porosity == 1.0) out << impact_state(s);
+  if (s.every_body_solid()) out << impact_state(s);
   for (const std::string& w : scene_warnings(s)) out << "warning: " << w << "\n";
   if (const std::string w = probes_size_warning(s, dt0); !w.empty()) out << "warning: " << w << "\n";
   // Every effect the run simulates, and none that it does not.

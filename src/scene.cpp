@@ -990,7 +990,7 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                               format_number(a) + " m)");
   if (!(s.flyer_velocity + s.target_velocity > 0.0))
     fail("flyer_velocity", "the bodies do not approach each other: flyer_velocity + target_velocity must be > 0");
-  if (s.porosity > 1.0 || s.flyer_porosity > 1.0) {
+  if (!s.every_body_solid()) {
     if (s.void_radius_spread >= s.void_radius) fail("void_radius_spread", "must be smaller than void_radius");
     const double r_min = s.void_radius - s.void_radius_spread;
     const double r_max = s.void_radius + s.void_radius_spread;
@@ -1198,7 +1198,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   if (std::isnan(scene.flyer_velocity)) scene.flyer_velocity = scene.velocity;
   if (std::isnan(scene.target_velocity)) scene.target_velocity = scene.velocity;
   if (std::isnan(scene.flyer_porosity)) scene.flyer_porosity = scene.porosity;
-  if (scene.av_linear < 0.0) scene.av_linear = auto_av_linear(scene.porosity == 1.0 && scene.flyer_porosity == 1.0);
+  if (scene.av_linear < 0.0) scene.av_linear = auto_av_linear(scene.every_body_solid());
   if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.shape_function);
   check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; }, errors);
   errors.throw_if_any();

@@ -126,7 +126,7 @@ struct Scene {
   double flip_fraction = 1.0;  // share of FLIP in the point velocity update; the rest is PIC
   bool skip_unreached = true;  // advance material nothing has reached in closed form (unreached.hpp)
   bool volumetric_smoothing = false;  // tr L_p from the grid's field of it (volumetric_smoothing.hpp)
-  double av_linear = -1.0;  // < 0 until parsed: automatic, auto_av_linear(every body solid)
+  double av_linear = -1.0;  // < 0 until parsed: automatic, auto_av_linear(every_body_solid())
   double av_quadratic = 2.0;
   double av_heat_flux = 10.0;  // beta of the artificial heat flux (artificial_heat_flux.hpp); 0: none
   std::int64_t seed = 1;
@@ -161,6 +161,8 @@ struct Scene {
   const Material& material_of(Body b) const;
   const std::string& material_name(Body b) const;
   bool has_window() const { return window_height > 0.0; }
+  // No body has voids (a window is always solid).
+  bool every_body_solid() const { return porosity == 1.0 && flyer_porosity == 1.0; }
   // Every body of one material (the same constants, whatever their names).
   bool one_material() const;
   // The flyer's voids are the target's mirror image (flyer_mirror = on, both bodies equally porous).
