@@ -25,21 +25,24 @@ namespace {
 
 // The shocked state of solid bodies at impact, where their Hugoniots cross (hydrodynamic, the
 // impedance match; tests/test_impedance.cpp checks runs against it): the particle velocity u
-// taken up by the target solves rho_t (c_t + s_t u) u = rho_f (c_f + s_f (V - u)) (V - u), V the
-// closing speed.
-std::string impact_state(const Scene& s) {
-  const Material& f = s.material_of(Body::flyer);
-  const Material& t = s.material_of(Body::target);
-  auto P = [](const Material& m, double up) { return m.density * (m.sound_speed + m.hugoniot_slope * up) * up; };
+// taken up by the target solves P_t(u) = P_f(V - u), V the closing speed, each P the
+// Rankine-Hugoniot pressure of the body's equation of state (rankine_hugoniot.hpp; with
+// Mie-Grüneisen rho0 (c0 + s u) u).
+std::string impact_state(const Scene& s, const Model& model) {
+  auto P = [&](Body b, double up) {
+    return std::visit([&](const auto& eos) { return shock_from_rest(eos, up).pressure; }, model.eos[index_of(b)]);
+  };
+  auto P_t = [&](double up) { return P(Body::target, up); };
+  auto P_f = [&](double up) { return P(Body::flyer, up); };
   const double V = s.flyer_velocity + s.target_velocity;
   double lo = 0.0, hi = V;
   for (int k = 0; k < 200; ++k) {
     const double u = 0.5 * (lo + hi);
-    (P(t, u) < P(f, V - u) ? lo : hi) = u;
+    (P_t(u) < P_f(V - u) ? lo : hi) = u;
   }
   const double u = 0.5 * (lo + hi);
   std::ostringstream out;
-  out << "impact (solid Hugoniots, hydrodynamic): " << P(t, u) * 1e-9 << " GPa, the interface moving at "
+  out << "impact (solid Hugoniots, hydrodynamic): " << P_t(u) * 1e-9 << " GPa, the interface moving at "
       << u - s.target_velocity << " m/s\n";
   return out.str();
 }
@@ -109,7 +112,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   else
     out << "set by sound (cfl " << s.cfl << ", fastest signal " << signal << " m/s)";
   out << "; at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
-  if (s.every_body_solid()) out << impact_state(s);
+  if (s.every_body_solid()) out << impact_state(s, model);
   for (const std::string& w : scene_warnings(s)) out << "warning: " << w << "\n";
   if (const std::string w = probes_size_warning(s, dt0); !w.empty()) out << "warning: " << w << "\n";
   // Every effect the run simulates, and none that it does not.
@@ -133,6 +136,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   if (s.material_of(Body::flyer).bound_expansion || s.material_of(Body::target).bound_expansion ||
       (s.has_window() && s.material_of(Body::window).bound_expansion))
     on.push_back("bounded expansion (Rose binding curve)");
+  if (std::holds_alternative<Tillotson>(model.eos[index_of(Body::target)]))
+    on.push_back("Tillotson equation of state (compressed, expanded and vapour branches)");
   if (s.effects.artificial_viscosity) {
     std::ostringstream av;
     av << "artificial viscosity (A1 " << s.av_linear << ", A2 " << s.av_quadratic << ")";

@@ -8,7 +8,7 @@ double initial_signal_speed(const Particles<D>& pts, const Model& model) {
   for (std::size_t p = 0; p < pts.size(); ++p) {
     const Body b = pts.body[p];
     const double G = model.shear_modulus(b);
-    double c2 = std::max(std::visit([&](const auto& eos) { return eos.sound_speed_squared(pts.J(p), pts.P[p]); },
+    double c2 = std::max(std::visit([&](const auto& eos) { return eos.sound_speed_squared(pts.J(p), pts.E[p], pts.P[p]); },
                                     model.eos[static_cast<std::size_t>(b)]),
                          0.0);
     if (model.has_strength()) c2 += (4.0 / 3.0) * G / pts.density(p);

@@ -7,7 +7,9 @@
 // range of the linear fit, is an estimate (3 km/s for the metals and PMMA, 5 km/s for LiF), and the
 // cohesive energy is used only with bounded_expansion = on. Johnson-Cook constants
 // (strength_model = johnson_cook) are given where a source gives them: aluminium and copper; tantalum,
-// LiF and PMMA have none (jc_yield_stress = 0) until a scene sets material.NAME.jc_*.
+// LiF and PMMA have none (jc_yield_stress = 0) until a scene sets material.NAME.jc_*. Tillotson
+// constants (equation_of_state = tillotson): aluminium's; the others have none (tillotson_bulk_modulus
+// = 0) until a scene sets material.NAME.tillotson_*.
 #include "mpmshock/material.hpp"
 
 namespace mpmshock {
@@ -16,7 +18,7 @@ namespace {
 
 Material make(double rho0, double c0, double s, double gamma0, double cv, double E, double nu, double Y0,
               double E_tan, double k, double cohesive, double fit_up) {
-  Material m;
+  Material m = without_tillotson(Material{});
   m.density = rho0;
   m.sound_speed = c0;
   m.hugoniot_slope = s;
@@ -47,12 +49,21 @@ Material with_johnson_cook(Material m, double A, double B, double n, double C, d
 
 Material without_johnson_cook(Material m) { return with_johnson_cook(m, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0); }
 
+Material without_tillotson(Material m) {
+  m.tillotson_a = m.tillotson_b = m.tillotson_bulk_modulus = m.tillotson_nonlinear_modulus = 0.0;
+  m.tillotson_energy = m.tillotson_incipient_vaporisation = m.tillotson_complete_vaporisation = 0.0;
+  m.tillotson_alpha = m.tillotson_beta = 0.0;
+  return m;
+}
+
 const std::vector<LibraryMaterial>& material_library() {
   static const std::vector<LibraryMaterial> library = {
       {"aluminium", Material{},
        "the paper's aluminium (Xu et al.) with the physics-notes errata (E = 69 GPa); k and the "
        "Steinberg-Guinan softening of 6061-T6 (Steinberg 1996); Johnson-Cook constants of 6061-T6 as commonly "
-       "tabulated after Johnson and Holmquist (1989)"},
+       "tabulated after Johnson and Holmquist (1989); Tillotson constants of aluminium (Tillotson 1962, as "
+       "tabulated in Spheral's material library: a 0.5, b 1.63, A 75.2 GPa, B 65 GPa, E0 5 MJ/kg, E_iv "
+       "2.7 MJ/kg, E_cv 14.1 MJ/kg, alpha 5, beta 5)"},
       // Steinberg 1996 (OFHC copper): rho0 8930, c0 3940, s 1.489, gamma0 2.02, G0 47.7 GPa,
       // Y0 0.12 GPa, Y_max 0.64 GPa; nu 0.34 gives E = 2 G0 (1 + nu) = 127.8 GPa.
       {"copper",

@@ -43,6 +43,11 @@ StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
   return VonMises<true>(mat);
 }
 
+EquationOfState equation_of_state_of(const Material& mat) {
+  if (mat.equation_of_state == EquationOfStateModel::tillotson) return Tillotson(mat);
+  return MieGruneisen(mat);
+}
+
 MeltCurve melt_curve_of(const Scene& s) {
   return {s.melt_temperature, s.lindemann_a, s.material_of(Body::target).gruneisen_gamma};  // one material (scene.cpp)
 }
@@ -67,7 +72,7 @@ Model::Model(const Scene& s) : Model(s, body_materials(s), kinematic_hardening(s
 
 Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool back_stress)
     : shape(shape_of(s)),
-      eos{MieGruneisen(*m[0]), MieGruneisen(*m[1]), MieGruneisen(*m[2])},
+      eos{equation_of_state_of(*m[0]), equation_of_state_of(*m[1]), equation_of_state_of(*m[2])},
       strength{strength_of(s, *m[0], back_stress), strength_of(s, *m[1], back_stress),
                strength_of(s, *m[2], back_stress)},
       viscosity(viscosity_of(s)),
@@ -78,7 +83,8 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool
       // No material point outruns several times the impact speed plus the sound speed; a point
       // that does is a blow-up.
       speed_limit(10.0 * (2.0 * s.fastest_body_speed() +
-                          std::max({m[0]->sound_speed, m[1]->sound_speed, m[2]->sound_speed}))) {
+                          std::max({reference_sound_speed(Body::flyer), reference_sound_speed(Body::target),
+                                    reference_sound_speed(Body::window)}))) {
   if (s.effects.thermal) thermal.emplace(*m[0], *m[1], *m[2], s.temperature_model, s.paper_temperature);
   if (thermal && s.effects.thermal_softening) thermal->set_melting(melt_curve_of(s), s.latent_heat);
   symmetry_plane = s.symmetry == Symmetry::on;
@@ -94,6 +100,10 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool
 
 double Model::limiting_compression(Body b) const {
   return std::visit([](const auto& e) { return e.limiting_compression(); }, eos[static_cast<std::size_t>(b)]);
+}
+
+double Model::reference_sound_speed(Body b) const {
+  return std::visit([](const auto& e) { return e.reference_sound_speed(); }, eos[static_cast<std::size_t>(b)]);
 }
 
 double Model::eos_fit_limit(Body b) const {

@@ -521,6 +521,34 @@ const std::vector<Key>& keys() {
                          "the largest particle velocity the Us-up fit describes (217 GPa on the aluminium Hugoniot); "
                          "points compressed past its Hugoniot state are counted as outside the equation of state's range",
                          FIELD(material.fit_particle_velocity)));
+    k.push_back(choice<EquationOfStateModel>(
+        "equation_of_state", {{"mie_gruneisen", EquationOfStateModel::mie_gruneisen}, {"tillotson", EquationOfStateModel::tillotson}},
+        "mie_gruneisen",
+        "mie_gruneisen: referenced to the Us-up Hugoniot (sound_speed, hugoniot_slope, gruneisen_gamma); "
+        "tillotson: Tillotson's compressed, expanded and vapour branches with the tillotson_* keys (built-in "
+        "constants: aluminium); every body of a scene takes the same one",
+        FIELD(material.equation_of_state)));
+    k.push_back(quantity("tillotson_a", D::none, closed(0.0, 10.0), "0.5",
+                         "Tillotson a (equation_of_state = tillotson; aluminium, Tillotson 1962)", FIELD(material.tillotson_a)));
+    k.push_back(quantity("tillotson_b", D::none, closed(0.0, 10.0), "1.63", "Tillotson b", FIELD(material.tillotson_b)));
+    k.push_back(quantity("tillotson_bulk_modulus", D::pressure, non_negative(), "75.2 GPa",
+                         "Tillotson A, the bulk modulus of the reference state; 0: the material has no Tillotson constants",
+                         FIELD(material.tillotson_bulk_modulus)));
+    k.push_back(quantity("tillotson_nonlinear_modulus", D::pressure, non_negative(), "65 GPa",
+                         "Tillotson B, the coefficient of mu^2 (mu = rho/rho0 - 1)", FIELD(material.tillotson_nonlinear_modulus)));
+    k.push_back(quantity("tillotson_energy", D::specific_energy, non_negative(), "5 MJ/kg",
+                         "Tillotson E0, the energy scale of the b term", FIELD(material.tillotson_energy)));
+    k.push_back(quantity("tillotson_incipient_vaporisation", D::specific_energy, non_negative(), "2.7 MJ/kg",
+                         "Tillotson E_iv: expanded material below it follows the cold (compressed) branch",
+                         FIELD(material.tillotson_incipient_vaporisation)));
+    k.push_back(quantity("tillotson_complete_vaporisation", D::specific_energy, non_negative(), "14.1 MJ/kg",
+                         "Tillotson E_cv: expanded material above it follows the vapour branch; between E_iv and "
+                         "E_cv the pressure is interpolated in E",
+                         FIELD(material.tillotson_complete_vaporisation)));
+    k.push_back(quantity("tillotson_alpha", D::none, closed(0.0, 100.0), "5",
+                         "Tillotson alpha, the decay of the vapour branch's b term with expansion", FIELD(material.tillotson_alpha)));
+    k.push_back(quantity("tillotson_beta", D::none, closed(0.0, 100.0), "5",
+                         "Tillotson beta, the decay of the vapour branch's A term with expansion", FIELD(material.tillotson_beta)));
     k.push_back(quantity("jc_yield_stress", D::pressure, non_negative(), "324 MPa",
                          "Johnson-Cook A, the yield stress at zero plastic strain, 1 /s and room temperature "
                          "(strength_model = johnson_cook; 6061-T6 after Johnson and Holmquist 1989); 0: the material "
@@ -842,7 +870,7 @@ void set_material_key(Scene& scene, const Entry& e) {
   Scene holder;  // the key sets Scene::material: set it on a scene holding this material
   const auto it = scene.materials.find(name);
   // A new material starts from aluminium's constants, without its (6061-T6) Johnson-Cook ones.
-  holder.material = it != scene.materials.end() ? it->second : without_johnson_cook(Material{});
+  holder.material = it != scene.materials.end() ? it->second : without_tillotson(without_johnson_cook(Material{}));
   k->set(holder, e.value, e.at);
   scene.materials[name] = holder.material;
 }
@@ -985,6 +1013,40 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                                                  name + "): the material would start molten");
     }
   }
+  // The equation of state: every body's of one law (the kernels hold one type), each with its
+  // constants. Errors name the equation_of_state key the scene set (where it set one).
+  if (materials_known) {
+    auto eos_key = [&](const std::string& name) { return (name == "scene" ? "" : "material." + name + ".") + std::string("equation_of_state"); };
+    auto law_name = [](EquationOfStateModel m) { return m == EquationOfStateModel::tillotson ? "tillotson" : "mie_gruneisen"; };
+    const std::string& target = s.material_name(Body::target);
+    const EquationOfStateModel law = s.material_of(Body::target).equation_of_state;
+    std::vector<std::string> checked;
+    for (const Body b : {Body::target, Body::flyer, Body::window}) {
+      const std::string& name = s.material_name(b);
+      if ((b == Body::window && !s.has_window()) || std::count(checked.begin(), checked.end(), name)) continue;
+      checked.push_back(name);
+      const std::string prefix = name == "scene" ? "" : "material." + name + ".";
+      const Material& m = s.material_of(b);
+      if (m.equation_of_state != law) {
+        const std::string key = s.origin.count(eos_key(name)) || !s.origin.count(eos_key(target)) ? eos_key(name) : eos_key(target);
+        fail(key, std::string("every body takes the same equation of state: the target's material ") + target + " has " +
+                      law_name(law) + ", material " + name + " " + law_name(m.equation_of_state));
+        continue;
+      }
+      if (m.equation_of_state != EquationOfStateModel::tillotson) continue;
+      if (!m.has_tillotson())
+        fail(eos_key(name), "is tillotson, but material " + name + " has no Tillotson constants: give its " + prefix +
+                                "tillotson_* keys (mpmshock --keys)");
+      else if (!(m.tillotson_energy > 0.0))
+        fail(prefix + "tillotson_energy", "must be > 0 with equation_of_state = tillotson (material " + name + ")");
+      else if (!(m.tillotson_complete_vaporisation > m.tillotson_incipient_vaporisation))
+        fail(prefix + "tillotson_complete_vaporisation",
+             "must exceed tillotson_incipient_vaporisation (material " + name + ")");
+      if (m.bound_expansion)
+        fail(prefix + "bounded_expansion", "is Mie-Grüneisen's expanded branch; Tillotson has its own (material " +
+                                               name + "): leave it off with equation_of_state = tillotson");
+    }
+  }
   if (s.has_window() && !is_multiple(s.window_height, a))
     fail("window_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
                               format_number(a) + " m)");
@@ -1080,7 +1142,13 @@ bool same_constants(const Material& a, const Material& b) {
          a.jc_yield_stress == b.jc_yield_stress && a.jc_hardening == b.jc_hardening &&
          a.jc_hardening_exponent == b.jc_hardening_exponent && a.jc_rate_coefficient == b.jc_rate_coefficient &&
          a.jc_thermal_exponent == b.jc_thermal_exponent && a.jc_melt_temperature == b.jc_melt_temperature &&
-         a.jc_room_temperature == b.jc_room_temperature;
+         a.jc_room_temperature == b.jc_room_temperature && a.equation_of_state == b.equation_of_state &&
+         a.tillotson_a == b.tillotson_a && a.tillotson_b == b.tillotson_b &&
+         a.tillotson_bulk_modulus == b.tillotson_bulk_modulus &&
+         a.tillotson_nonlinear_modulus == b.tillotson_nonlinear_modulus && a.tillotson_energy == b.tillotson_energy &&
+         a.tillotson_incipient_vaporisation == b.tillotson_incipient_vaporisation &&
+         a.tillotson_complete_vaporisation == b.tillotson_complete_vaporisation &&
+         a.tillotson_alpha == b.tillotson_alpha && a.tillotson_beta == b.tillotson_beta;
 }
 
 const std::string& Scene::material_name(Body b) const {

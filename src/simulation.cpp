@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <sstream>
 
+#include "mpmshock/point_update_kernels.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/signals.hpp"
 #include "mpmshock/symmetry_plane.hpp"
@@ -22,44 +23,43 @@ bool bin_points(StripBins& bins, const Particles<D>& pts, PointRange range, cons
   return bins.build<Shape>(pts.x, range, g);
 }
 
-// The kernels for one choice of shape function and laws: every combination the variants of
-// model.hpp allow is instantiated by std::visit, none is listed by hand.
-template <int D, class Shape, class Eos, class Strength, class Viscosity, class Failure>
-Kernels<D> kernels_for(UpdateScheme scheme, double flip_fraction, bool conduction, bool smoothing, bool heat_flux,
-                       [[maybe_unused]] const Failure& failure) {
-  constexpr bool stress = Strength::has_stress;
-  Kernels<D> k{};
+// The kernels of a run, in two dispatches: the transfers by the shape function (and whether the
+// points carry stress), the point update by the laws (point_update_kernels.hpp, compiled per
+// equation of state). Every combination the variants of model.hpp allow is instantiated by
+// std::visit, none is listed by hand; the two apart instantiate the sum of the choices, not their
+// product.
+template <int D, class Shape>
+void add_transfer_kernels(Kernels<D>& k, const Model& m) {
+  const bool stress = m.has_strength(), smoothing = m.volumetric_smoothing;
   k.support = Shape::support;
   k.first_row = Shape::template first_row<D>;
   k.bin = bin_points<D, Shape>;
-  k.to_grid = smoothing ? particles_to_grid<D, Shape, stress, true> : particles_to_grid<D, Shape, stress>;
-  const bool musl = scheme == UpdateScheme::musl, blend = flip_fraction < 1.0;
+  k.to_grid = stress ? (smoothing ? particles_to_grid<D, Shape, true, true> : particles_to_grid<D, Shape, true>)
+                     : (smoothing ? particles_to_grid<D, Shape, false, true> : particles_to_grid<D, Shape, false>);
+  const bool musl = m.scheme == UpdateScheme::musl, blend = m.flip_fraction < 1.0;
   k.velocity_to_points = musl ? (blend ? grid_to_particles_velocity<D, Shape, true, true>
                                        : grid_to_particles_velocity<D, Shape, true, false>)
                               : (blend ? grid_to_particles_velocity<D, Shape, false, true>
                                        : grid_to_particles_velocity<D, Shape, false, false>);
-  k.gradient_work_and_move = velocity_gradient_work_and_move<D, Shape, stress>;
-  k.update_points = update_all_points<D, Eos, Strength, Viscosity, Failure>;
-  if (conduction) k.conduct = conduct_heat<D, Shape>;
-  if (heat_flux) k.heat_flux = artificial_heat_flux<D, Shape>;
-  if constexpr (std::is_same_v<Failure, Spall>)
-    if (failure.by_neighbourhood) k.open_in_tension = open_by_neighbourhood_tension<D, Shape>;
+  k.gradient_work_and_move =
+      stress ? velocity_gradient_work_and_move<D, Shape, true> : velocity_gradient_work_and_move<D, Shape, false>;
+  if (m.conducts_heat()) k.conduct = conduct_heat<D, Shape>;
+  if (m.heat_flux_beta > 0.0) k.heat_flux = artificial_heat_flux<D, Shape>;
+  if (const Spall* spall = std::get_if<Spall>(&m.failure))
+    if (spall->by_neighbourhood) k.open_in_tension = open_by_neighbourhood_tension<D, Shape>;
   if (smoothing) {
     k.smooth_pressure = smooth_pressure<D, Shape>;
     k.smooth_volume_rate = smooth_volume_rate<D, Shape>;
   }
-  return k;
 }
 
 template <int D>
 Kernels<D> kernels_for(const Model& m) {
-  return std::visit(
-      [&](auto shape, const auto& eos, const auto& strength, const auto& viscosity, const auto& failure) {
-        return kernels_for<D, decltype(shape), std::decay_t<decltype(eos)>, std::decay_t<decltype(strength)>,
-                           std::decay_t<decltype(viscosity)>, std::decay_t<decltype(failure)>>(
-            m.scheme, m.flip_fraction, m.conducts_heat(), m.volumetric_smoothing, m.heat_flux_beta > 0.0, failure);
-      },
-      m.shape, m.eos[1], m.strength[1], m.viscosity, m.failure);  // the flyer's laws are of the same types
+  Kernels<D> k{};
+  std::visit([&](auto shape) { add_transfer_kernels<D, decltype(shape)>(k, m); }, m.shape);
+  std::visit([&](const auto& eos) { k.update_points = update_points_kernel<D, std::decay_t<decltype(eos)>>(m); },
+             m.eos[1]);  // every body's equation of state is of one type
+  return k;
 }
 
 // The step effects a model calls for, in the order their slots run.
@@ -135,7 +135,7 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
   for (const Body b : {Body::flyer, Body::target, Body::window}) {
     const Material& mat = scene.material_of(b);
     heat_flux_.specific_heat[static_cast<std::size_t>(b)] = mat.specific_heat;
-    heat_flux_.sound_speed[static_cast<std::size_t>(b)] = mat.sound_speed;
+    heat_flux_.sound_speed[static_cast<std::size_t>(b)] = model_.reference_sound_speed(b);
   }
   heat_flux_.one_material = scene.one_material();
   heat_.conductivity = model_.conductivity;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "mpmshock/tillotson.hpp"
+
 namespace mpmshock {
 
 namespace {
@@ -23,6 +25,10 @@ struct WalshChristian {
 HugoniotTemperature::HugoniotTemperature(const Material& mat, TemperatureModel model, bool report_paper,
                                          int intervals)
     : model_(model), report_paper_(report_paper), eos_(mat), cv_(mat.specific_heat), T0_(mat.initial_temperature), gamma0_(mat.gruneisen_gamma) {
+  if (mat.equation_of_state == EquationOfStateModel::tillotson) {
+    tabulate_isentrope(mat, intervals);
+    return;
+  }
   const double J_limit = eos_.limiting_compression();
   // Stop short of the pole at J = 1 - 1/s where T_H diverges; no physical state gets close.
   J_min_ = J_limit + 0.02 * (1.0 - J_limit);
@@ -50,7 +56,51 @@ HugoniotTemperature::HugoniotTemperature(const Material& mat, TemperatureModel m
   }
 }
 
+void HugoniotTemperature::tabulate_isentrope(const Material& mat, int intervals) {
+  const Tillotson eos(mat);
+  constexpr double kTop = 4.0;  // the largest J tabulated
+  const double J_limit = eos.limiting_compression();
+  J_min_ = J_limit + 0.02 * (1.0 - J_limit);
+  dJ_ = (1.0 - J_min_) / intervals;
+  const auto above = static_cast<int>(std::ceil((kTop - 1.0) / dJ_));
+  const std::size_t nodes = static_cast<std::size_t>(intervals + above) + 1, one = static_cast<std::size_t>(intervals);
+  isentrope_energy_.assign(nodes, 0.0);
+  isentrope_temperature_.assign(nodes, T0_);
+  // d(E, T)/dJ along the isentrope.
+  const double rho0 = eos.rho0();
+  auto rhs = [&](double J, double E, double T, double& dE, double& dT) {
+    dE = -eos.pressure(J, E) / rho0;
+    dT = -T * eos.pressure_energy_slope(J, E) / rho0;
+  };
+  // RK4 with 8 substeps per table interval, from J = 1 down to J_min and up to the top.
+  constexpr int kSub = 8;
+  for (const int direction : {-1, 1}) {
+    double J = 1.0, E = 0.0, T = T0_;
+    const double h = direction * dJ_ / kSub;
+    const int steps = direction < 0 ? intervals : above;
+    for (int k = 1; k <= steps; ++k) {
+      for (int sub = 0; sub < kSub; ++sub) {
+        double e1, t1, e2, t2, e3, t3, e4, t4;
+        rhs(J, E, T, e1, t1);
+        rhs(J + 0.5 * h, E + 0.5 * h * e1, T + 0.5 * h * t1, e2, t2);
+        rhs(J + 0.5 * h, E + 0.5 * h * e2, T + 0.5 * h * t2, e3, t3);
+        rhs(J + h, E + h * e3, T + h * t3, e4, t4);
+        E += h / 6.0 * (e1 + 2.0 * e2 + 2.0 * e3 + e4);
+        T += h / 6.0 * (t1 + 2.0 * t2 + 2.0 * t3 + t4);
+        J += h;
+      }
+      const std::size_t node = direction < 0 ? one - static_cast<std::size_t>(k) : one + static_cast<std::size_t>(k);
+      isentrope_energy_[node] = E;
+      isentrope_temperature_[node] = T;
+    }
+  }
+}
+
 double HugoniotTemperature::hugoniot_temperature(double J) const {
+  if (!isentrope_temperature_.empty()) {
+    if (!(J >= J_min_)) return std::numeric_limits<double>::infinity();
+    return isentrope_lookup(isentrope_temperature_, J);
+  }
   if (J >= 1.0) return T0_ * std::exp(gamma0_ * (1.0 - J));
   if (!(J >= J_min_)) return std::numeric_limits<double>::infinity();
   const double u = (1.0 - J) / dJ_;

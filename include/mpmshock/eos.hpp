@@ -34,7 +34,7 @@ class MieGruneisen {
  public:
   MieGruneisen() = default;
   explicit MieGruneisen(const Material& mat)
-      : rho0_(mat.density), s_(mat.hugoniot_slope), gamma0_(mat.gruneisen_gamma),
+      : rho0_(mat.density), c0_(mat.sound_speed), s_(mat.hugoniot_slope), gamma0_(mat.gruneisen_gamma),
         K0_(mat.density * mat.sound_speed * mat.sound_speed), E_coh_(mat.cohesive_energy),
         x0_(std::sqrt(mat.cohesive_energy) / mat.sound_speed), rose_(mat.bound_expansion),
         J_fit_(1.0 - mat.fit_particle_velocity / (mat.sound_speed + mat.hugoniot_slope * mat.fit_particle_velocity)) {}
@@ -78,6 +78,10 @@ class MieGruneisen {
   // (dE_r/deta = P_r/rho0) (J^2/rho0) [ P_r' - gamma0 P_r + gamma0 P ].
   // Negative past the cold curve's peak tension; callers use it only for time steps and viscosity.
   double sound_speed_squared(double J, double P) const { return bulk_sound_speed_squared(hugoniot(J), J, P); }
+  // The same, in the form every equation of state offers (Tillotson's needs E).
+  double sound_speed_squared(double J, double /*E*/, double P) const { return sound_speed_squared(J, P); }
+  // The bulk sound speed of the reference state, c0.
+  double reference_sound_speed() const { return c0_; }
 
  private:
   struct Hugoniot {
@@ -110,7 +114,7 @@ class MieGruneisen {
     return (J * J / rho0_) * (h.stiffness + gamma0_ * P);
   }
 
-  double rho0_ = 2700.0, s_ = 1.34, gamma0_ = 1.96, K0_ = 2700.0 * 5350.0 * 5350.0;
+  double rho0_ = 2700.0, c0_ = 5350.0, s_ = 1.34, gamma0_ = 1.96, K0_ = 2700.0 * 5350.0 * 5350.0;
   double E_coh_ = 12.1e6, x0_ = std::sqrt(12.1e6) / 5350.0;
   bool rose_ = false;
   double J_fit_ = 1.0 - 6000.0 / (5350.0 + 1.34 * 6000.0);

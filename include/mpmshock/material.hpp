@@ -15,7 +15,12 @@ enum class Body : std::uint8_t { flyer = 0, target = 1, window = 2 };
 constexpr std::size_t kBodies = 3;
 constexpr std::size_t index_of(Body b) { return static_cast<std::size_t>(b); }
 
+// The equation of state of a material: Mie-Grüneisen on its Us-up Hugoniot (eos.hpp) or
+// Tillotson's, with expanded and vapour states (tillotson.hpp).
+enum class EquationOfStateModel { mie_gruneisen, tillotson };
+
 struct Material {
+  EquationOfStateModel equation_of_state = EquationOfStateModel::mie_gruneisen;
   double density = 2700.0;               // rho0, solid reference density [kg/m3]
   double youngs_modulus = 69e9;          // E [Pa]; with nu gives only the shear modulus
   double poisson_ratio = 0.33;           // nu
@@ -36,6 +41,20 @@ struct Material {
   // The largest particle velocity the Us-up fit describes: compression past its Hugoniot state
   // is counted as outside the equation of state's range (eos.hpp) [m/s].
   double fit_particle_velocity = 6000.0;
+
+  // Tillotson's constants (equation_of_state = tillotson, tillotson.hpp). The defaults are
+  // aluminium's (Tillotson 1962, as tabulated in Spheral's material library); A = 0 marks a material
+  // without them (material_library.cpp).
+  double tillotson_a = 0.5;
+  double tillotson_b = 1.63;
+  double tillotson_bulk_modulus = 75.2e9;          // A [Pa]
+  double tillotson_nonlinear_modulus = 65.0e9;     // B [Pa]
+  double tillotson_energy = 5.0e6;                 // E0 [J/kg]
+  double tillotson_incipient_vaporisation = 2.7e6; // E_iv [J/kg]
+  double tillotson_complete_vaporisation = 14.1e6; // E_cv [J/kg]
+  double tillotson_alpha = 5.0;
+  double tillotson_beta = 5.0;
+  bool has_tillotson() const { return tillotson_bulk_modulus > 0.0; }
 
   // Johnson-Cook flow stress (strength_model = johnson_cook, johnson_cook.hpp):
   //   sigma_Y = (A + B eps_p^n) (1 + C ln(rate / 1 /s)) (1 - T*^m),  T* = (T - T_r) / (T_m - T_r).
@@ -63,6 +82,10 @@ struct Material {
 // library's tantalum, LiF and PMMA and a scene's new material are until given them; strength_model =
 // johnson_cook refuses it.
 Material without_johnson_cook(Material m);
+
+// The material without Tillotson constants (tillotson_bulk_modulus = 0): the library's copper,
+// tantalum, LiF and PMMA; equation_of_state = tillotson refuses it.
+Material without_tillotson(Material m);
 
 // Whether two materials have every constant equal.
 bool same_constants(const Material& a, const Material& b);

@@ -16,11 +16,12 @@
 #include "mpmshock/shape.hpp"
 #include "mpmshock/spall.hpp"
 #include "mpmshock/temperature.hpp"
+#include "mpmshock/tillotson.hpp"
 #include "mpmshock/von_mises.hpp"
 
 namespace mpmshock {
 
-using EquationOfState = std::variant<MieGruneisen>;
+using EquationOfState = std::variant<MieGruneisen, Tillotson>;
 using StrengthLaw =
     std::variant<NoStrength, VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>, JohnsonCook>;
 using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
@@ -31,6 +32,8 @@ using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape
 // the kinematic form even for isotropic hardening (when the other body needs it, so that both
 // bodies' laws are one type).
 StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress = false);
+// A material's equation of state.
+EquationOfState equation_of_state_of(const Material& mat);
 // Whether either body's material hardens kinematically (hardening_beta < 1): then both store a back stress.
 bool kinematic_hardening(const Scene& s);
 // The Lindemann melt curve of a scene (thermal_softening.hpp).
@@ -75,6 +78,8 @@ struct Model {
 
   // The smallest J = V/V0 a body's equation of state admits.
   double limiting_compression(Body b) const;
+  // The bulk sound speed of a body's material in its reference state (Mie-Grüneisen: c0).
+  double reference_sound_speed(Body b) const;
   // The smallest J its fit describes (eos.hpp); below it the state is an extrapolation.
   double eos_fit_limit(Body b) const;
   // The shear modulus G a body's longitudinal sound speed sees; 0 without strength.

@@ -2,6 +2,12 @@
 // equation (physics-notes section 2), integrated once at start-up into a table:
 //   energy (default): T = T_H(V) + (E - E_H(V)) / c_v, all the heat the internal energy holds beyond
 //                     the Hugoniot's: shock, plastic and compaction (PdV work on collapsing voids);
+// With Tillotson's equation of state (equation_of_state = tillotson), which has no Hugoniot of
+// closed form, the reference curve is instead the isentrope through the reference state (J = 1,
+// E = 0, T0): dE_s/dJ = -P(J, E_s) / rho0, dT_s/dJ = -T_s (dP/dE)_V / rho0, tabulated at start-up
+// for J from near 0.2 to 4 (beyond 4 the values at 4), and T = T_s(V) + (E - E_s(V)) / c_v; the same
+// constant c_v, so the two reference curves give one temperature where they meet (tested).
+//   (Below, T_H and E_H stand for whichever reference curve the material's equation of state has.)
 //   paper:            T = T_H(V) + W_p / c_v, W_p the plastic work turned to heat. The paper's text
 //                     takes E - E_H as plastic energy, but its reported temperatures (432 K at
 //                     250 ns, ~60 K left after release at delta 1.03) fit this model, which leaves
@@ -36,11 +42,16 @@ class HugoniotTemperature {
   HugoniotTemperature(const Material& mat, TemperatureModel model = TemperatureModel::energy,
                       bool report_paper = false, int intervals = 4096);
 
+  // T_H(J), the reference curve's temperature (with Tillotson: the isentrope's).
   double hugoniot_temperature(double J) const;
+  // E_H(J), the reference curve's energy.
+  double reference_energy(double J) const {
+    return isentrope_energy_.empty() ? eos_.hugoniot_energy(J) : isentrope_lookup(isentrope_energy_, J);
+  }
 
   // T = T_H(J) + (E - E_H(J)) / c_v, held at T_m(J) while the latent heat is taken up.
   double temperature(double J, double E) const {
-    const double T = hugoniot_temperature(J) + (E - eos_.hugoniot_energy(J)) / cv_;
+    const double T = hugoniot_temperature(J) + (E - reference_energy(J)) / cv_;
     if (latent_heat_ > 0.0) {
       const double T_m = melt_.at(J);
       if (T > T_m) return T_m + std::max(0.0, (T - T_m) * cv_ - latent_heat_) / cv_;
@@ -76,6 +87,16 @@ class HugoniotTemperature {
   double min_tabulated_J() const { return J_min_; }
 
  private:
+  // Tillotson's reference isentrope (see the top of the file).
+  void tabulate_isentrope(const Material& mat, int intervals);
+  double isentrope_lookup(const std::vector<double>& table, double J) const {
+    const double u = std::min((J - J_min_) / dJ_, static_cast<double>(table.size() - 1));
+    const auto k = static_cast<std::size_t>(u);
+    if (k + 1 >= table.size()) return table.back();
+    const double frac = u - static_cast<double>(k);
+    return table[k] + frac * (table[k + 1] - table[k]);
+  }
+
   TemperatureModel model_ = TemperatureModel::energy;
   bool report_paper_ = false;
   MieGruneisen eos_;
@@ -84,6 +105,8 @@ class HugoniotTemperature {
   MeltCurve melt_;
   double latent_heat_ = 0.0;
   std::vector<double> table_;  // table_[k] = T_H(1 - k dJ)
+  // With Tillotson: E_s and T_s at J = J_min + k dJ, up to J = 4 (empty with Mie-Grüneisen).
+  std::vector<double> isentrope_energy_, isentrope_temperature_;
 };
 
 // The temperature models of the bodies, each of its own material (flyer_material,
