@@ -91,11 +91,11 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool
   skip_unreached = s.skip_unreached;
   volumetric_smoothing = s.volumetric_smoothing;
   if (s.effects.thermal && s.effects.artificial_viscosity) heat_flux_beta = s.av_heat_flux;
-  const Material& one = s.material_of(Body::target);  // conduction needs one material (scene.cpp)
-  if (s.effects.heat_conduction && one.thermal_conductivity > 0.0) {
-    conductivity = one.thermal_conductivity;
-    diffusivity = conductivity / (one.density * one.specific_heat);
-  }
+  if (s.effects.heat_conduction)
+    for (std::size_t b = 0; b < kBodies; ++b) {
+      conductivity[b] = m[b]->thermal_conductivity;
+      diffusivity[b] = conductivity[b] / (m[b]->density * m[b]->specific_heat);
+    }
 }
 
 double Model::limiting_compression(Body b) const {

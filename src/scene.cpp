@@ -971,12 +971,7 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     if (m.tangent_modulus >= m.youngs_modulus)
       fail("material." + name + ".tangent_modulus", "must be smaller than youngs_modulus of material " + name);
   if (materials_known && !s.one_material()) {
-    // The laws below read one set of constants for every point (per-material versions: issue 29).
-    if (s.effects.heat_conduction)
-      fail("heat_conduction", "needs every body of one material (flyer_material " + s.flyer_material +
-                                  ", target_material " + s.target_material +
-                                  (s.has_window() ? ", window_material " + s.window_material : std::string()) +
-                                  "); conduction between materials is not implemented");
+    // Thermal softening reads one set of constants for every point (a per-material version: issue 29).
     if (s.effects.thermal_softening)
       fail("thermal_softening", "needs every body of one material (flyer_material " + s.flyer_material +
                                     ", target_material " + s.target_material +

@@ -139,9 +139,12 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
   }
   heat_flux_.one_material = scene.one_material();
   heat_.conductivity = model_.conductivity;
-  heat_.specific_heat = scene.material_of(Body::target).specific_heat;  // conduction needs one material (scene.cpp)
-  if (model_.conducts_heat())
-    heat_.relaxation_time = model_.cell_size * model_.cell_size / (M_PI * M_PI * model_.diffusivity);
+  heat_.one_material = scene.one_material();
+  for (std::size_t b = 0; b < kBodies; ++b) {
+    heat_.specific_heat[b] = scene.material_of(Body(b)).specific_heat;  // (a window's slot unused without one)
+    if (model_.diffusivity[b] > 0.0)
+      heat_.relaxation_time[b] = model_.cell_size * model_.cell_size / (M_PI * M_PI * model_.diffusivity[b]);
+  }
 }
 
 template <int D>

@@ -191,8 +191,8 @@ int main() {
     CHECK_THROWS_WITH(parse_scene("material.copper\n", "m.scene"), "m.scene:1");
     CHECK_THROWS_WITH(parse_scene("flyer_material = copper\nthermal_softening = on\n", "m.scene"),
                       "'thermal_softening'", "one material");
-    CHECK_THROWS_WITH(parse_scene("target_material = pmma\nheat_conduction = on\n", "m.scene"),
-                      "'heat_conduction'", "one material");
+    // Conduction takes each body's constants (heat_conduction.hpp).
+    CHECK(parse_scene("target_material = pmma\nheat_conduction = on\n", "m.scene").effects.heat_conduction);
     CHECK_THROWS_WITH(parse_scene("flyer_velocity = 0\ntarget_velocity = 0\n", "m.scene"), "'flyer_velocity'",
                       "do not approach");
     CHECK_THROWS_WITH(parse_scene("flyer_material = lif\nsymmetry = on\n", "m.scene"), "'symmetry'",

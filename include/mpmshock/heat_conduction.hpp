@@ -1,10 +1,14 @@
-// Heat conduction (heat_conduction = on): Fourier's law, q = -k grad T, through the grid.
+// Heat conduction (heat_conduction = on): Fourier's law, q = -k grad T, through the grid, each
+// point with its body's material's k, c_v and diffusivity alpha = k / (rho0 c_v).
 //
-//   1. nodal temperature   T_i = sum_p N_ip m_p T_p / m_i             (scatter, then divide)
+//   1. nodal temperature   T_i = sum_p N_ip C_p T_p / C_i             (scatter, then divide)
 //   2. point gradient      g_p = sum_i T_i grad N_ip
-//   3. nodal heat rate     Q_i = -sum_p V_p k g_p . grad N_ip         (scatter) [W per m of depth]
+//   3. nodal heat rate     Q_i = -sum_p V_p k_p g_p . grad N_ip       (scatter) [W per m of depth]
 //   4. point energy        E_p += dt sum_i N_ip Q_i / m_i             (gather)  [J/kg]
-//                               + c_v (T~_p - T_p)(1 - exp(-dt / tau)),  T~_p = sum_i N_ip T_i
+//                               + c_v,p (T~_p - T_p) r_p,  T~_p = sum_i N_ip T_i,  r_p = 1 - exp(-dt / tau_p)
+//
+// C_p = m_p c_v,p is a point's heat capacity and C_i = sum_p N_ip C_p a node's; with one material
+// the weights are the masses (c_v cancels), as they were before conduction took a material per body.
 //
 // Steps 1-4 without the last term are the Galerkin heat equation on the grid, its increments
 // carried to the points as FLIP carries velocity increments: they never see how the points' own
@@ -12,12 +16,16 @@
 // hot/cold interface the rows next to it kept 30 K of their initial offset whatever the cell size).
 // The last term is the sub-cell conduction the grid cannot resolve: each point's deviation from
 // the grid's temperature field decays at the rate of the slowest sub-cell mode, wavelength 2h,
-// tau = h^2 / (pi^2 alpha). Energy is conserved exactly: sum_i Q_i = 0 because sum_i grad N_ip = 0
+// tau_p = h^2 / (pi^2 alpha_p). Energy is conserved exactly: sum_i Q_i = 0 because sum_i grad N_ip = 0
 // (partition of unity), step 4 hands each node's Q_i out in the shares N_ip m_p / m_i that sum to
-// one, and the deviations sum to zero, sum_p m_p (T~_p - T_p) = sum_i m_i T_i - sum_p m_p T_p = 0. It runs on
+// one, and the deviations' heat sums to zero: the part of them the grid resolves (4b) is the nodal
+// mean weighted by C_p r_p, so sum_p C_p r_p (d_p - sum_i N_ip d_i) = 0 for any r_p (one material:
+// r_p is one number and the weights the masses). Where a point's material conducts slowly (PMMA's
+// alpha is 1/600 of aluminium's) its r_p is small and it barely takes part in the sub-cell
+// exchange, as its own diffusion would have it. It runs on
 // the grid and strips of the step's P2G (before the points move), with the temperatures of the
 // step's start. Explicit diffusion is stable for dt <= h^2 / (2 D alpha) (alpha = k / (rho c_v));
-// the time step keeps 0.2 h^2 / alpha, which for aluminium (alpha = 1e-4 m2/s) binds only below
+// the time step keeps 0.2 h^2 / alpha of the most diffusive body, which for aluminium (alpha = 1e-4 m2/s) binds only below
 // 0.1 um cells: at the paper's cells the mechanical step is 10^3-10^4 times shorter.
 //
 // With a symmetry plane (symmetry = on) each of the three nodal sums is folded across it
@@ -27,6 +35,7 @@
 // also completed across the rows two ranks share (halo.hpp) before it is folded or read.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -42,13 +51,15 @@
 
 namespace mpmshock {
 
-// The nodal scratch fields of the conduction and its constants.
+// The nodal scratch fields of the conduction and each body's constants.
 struct HeatConduction {
-  double conductivity = 0.0;  // k [W/(m K)]
-  double specific_heat = 0.0;  // c_v [J/(kg K)]
-  double relaxation_time = 0.0;  // tau = h^2 / (pi^2 alpha) of the sub-cell deviations [s]
-  std::vector<double> node_heat;  // m_i T_i, then T_i
+  std::array<double, kBodies> conductivity{};     // k [W/(m K)]
+  std::array<double, kBodies> specific_heat{};    // c_v [J/(kg K)]
+  std::array<double, kBodies> relaxation_time{};  // tau = h^2 / (pi^2 alpha) of the sub-cell deviations [s]
+  bool one_material = true;  // every body of one material: the nodal means are mass-weighted
+  std::vector<double> node_heat;  // C_i T_i, then T_i
   std::vector<double> node_rate;  // Q_i
+  std::vector<double> node_capacity;  // C_i (two materials), then the weights of 4b
 };
 
 // `plane`: the symmetry plane (symmetry = on), or null.
@@ -63,10 +74,20 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
     if (plane) plane->fold_scalar(g, field, rows);
   };
   const std::size_t first = geo.row_start(rows.begin), last = geo.row_start(rows.end);
+  const bool weighted = !h.one_material;  // heat capacities, not masses, weight the nodal means
   h.node_heat.resize(geo.nodes());
   h.node_rate.resize(geo.nodes());
+  if (weighted) h.node_capacity.resize(geo.nodes());
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = first; i < last; ++i) h.node_heat[i] = h.node_rate[i] = 0.0;
+  for (std::size_t i = first; i < last; ++i) {
+    h.node_heat[i] = h.node_rate[i] = 0.0;
+    if (weighted) h.node_capacity[i] = 0.0;
+  }
+  // Each body's sub-cell relaxation over this step, r = 1 - exp(-dt / tau).
+  std::array<double, kBodies> relax{};
+  for (std::size_t b = 0; b < kBodies; ++b)
+    relax[b] = h.relaxation_time[b] > 0.0 ? 1.0 - std::exp(-dt / h.relaxation_time[b]) : 0.0;
+  auto body = [&](std::size_t p) { return static_cast<std::size_t>(pts.body[p]); };
 
   // The step's scratch (work is written later in the step) holds T_p, then d_p.
   std::vector<double>& T = pts.work;
@@ -74,17 +95,42 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
   auto summed_across_ranks = [&](std::vector<double>& field) {
     return std::make_pair([&] { halo.between_colours(field); }, [&] { halo.after_colours(field); });
   };
-  halo.zero(h.node_heat, h.node_rate);
-  const auto [heat_between, heat_after] = summed_across_ranks(h.node_heat);
-  bins.scatter([&](std::size_t p) {  // 1. m_i T_i
-    T[p] = thermal.of_point(pts, p);
-    const double mT = pts.m[p] * T[p];
-    for_each_node(stencils[p], geo,
-                  [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * mT; });
-  }, heat_between, heat_after);
-  fold(h.node_heat);
+  // The nodal means: the field over the nodes' masses, or over their heat capacities.
+  auto divide_by_weights = [&](std::vector<double>& field) {
+    fold(field);
+    if (weighted) fold(h.node_capacity);
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = first; i < last; ++i) h.node_heat[i] = g.m[i] > 0.0 ? h.node_heat[i] / g.m[i] : 0.0;
+    for (std::size_t i = first; i < last; ++i) {
+      const double w = weighted ? h.node_capacity[i] : g.m[i];
+      field[i] = w > 0.0 ? field[i] / w : 0.0;
+    }
+  };
+  halo.zero(h.node_heat, h.node_rate);
+  if (weighted) halo.zero(h.node_capacity);
+  const auto [heat_between, heat_after] = summed_across_ranks(h.node_heat);
+  const auto [capacity_between, capacity_after] = summed_across_ranks(h.node_capacity);
+  auto heat_and_capacity_between = [&, hb = heat_between, cb = capacity_between] {
+    hb();
+    if (weighted) cb();
+  };
+  auto heat_and_capacity_after = [&, ha = heat_after, ca = capacity_after] {
+    ha();
+    if (weighted) ca();
+  };
+  bins.scatter([&](std::size_t p) {  // 1. C_i T_i (and C_i)
+    T[p] = thermal.of_point(pts, p);
+    if (!weighted) {
+      const double mT = pts.m[p] * T[p];
+      for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * mT; });
+      return;
+    }
+    const double C = pts.m[p] * h.specific_heat[body(p)], CT = C * T[p];
+    for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
+      h.node_heat[i] += N * CT;
+      h.node_capacity[i] += N * C;
+    });
+  }, heat_and_capacity_between, heat_and_capacity_after);
+  divide_by_weights(h.node_heat);
 
   const auto [rate_between, rate_after] = summed_across_ranks(h.node_rate);
   bins.scatter([&](std::size_t p) {  // 2. and 3.
@@ -93,7 +139,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
     for_each_node(st, geo, [&](std::size_t i, double, const Vec<D>& dN) {
       for (int d = 0; d < D; ++d) grad[d] += h.node_heat[i] * dN[d];
     });
-    const double kV = h.conductivity * pts.volume(p);
+    const double kV = h.conductivity[body(p)] * pts.volume(p);
     for_each_node(st, geo, [&](std::size_t i, double, const Vec<D>& dN) { h.node_rate[i] -= kV * dot(grad, dN); });
   }, rate_between, rate_after);
   fold(h.node_rate);
@@ -108,20 +154,29 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
     d[p] = T[p] - T_grid;
   }
   // 4b. The part of d the grid resolves (projection and interpolation smooth a smooth T by
-  // O(h^2 grad^2 T), which is not sub-cell structure): d_i = sum_p N_ip m_p d_p / m_i.
+  // O(h^2 grad^2 T), which is not sub-cell structure): d_i = sum_p N_ip w_p d_p / sum_p N_ip w_p,
+  // w_p = C_p r_p (one material: m_p).
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = first; i < last; ++i) h.node_heat[i] = 0.0;
+  for (std::size_t i = first; i < last; ++i) {
+    h.node_heat[i] = 0.0;
+    if (weighted) h.node_capacity[i] = 0.0;
+  }
   halo.zero(h.node_heat);
+  if (weighted) halo.zero(h.node_capacity);
   bins.scatter([&](std::size_t p) {
-    const double md = pts.m[p] * d[p];
-    for_each_node(stencils[p], geo,
-                  [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * md; });
-  }, heat_between, heat_after);
-  fold(h.node_heat);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = first; i < last; ++i) h.node_heat[i] = g.m[i] > 0.0 ? h.node_heat[i] / g.m[i] : 0.0;
+    if (!weighted) {
+      const double md = pts.m[p] * d[p];
+      for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) { h.node_heat[i] += N * md; });
+      return;
+    }
+    const double w = pts.m[p] * h.specific_heat[body(p)] * relax[body(p)], wd = w * d[p];
+    for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
+      h.node_heat[i] += N * wd;
+      h.node_capacity[i] += N * w;
+    });
+  }, heat_and_capacity_between, heat_and_capacity_after);
+  divide_by_weights(h.node_heat);
   // 4c. The grid's heat, and the decay of the sub-cell part d_p - sum_i N_ip d_i.
-  const double relax = 1.0 - std::exp(-dt / h.relaxation_time);
 #pragma omp parallel for schedule(dynamic, kChunk)
   for (std::size_t p = range.begin; p < range.end; ++p) {
     double heat = 0.0, d_grid = 0.0;
@@ -129,7 +184,8 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
       if (N > 0.0) heat += N * h.node_rate[i] / g.m[i];  // N > 0: this point gave node i its mass
       d_grid += N * h.node_heat[i];
     });
-    pts.E[p] += dt * heat - h.specific_heat * (d[p] - d_grid) * relax;
+    const std::size_t b = body(p);
+    pts.E[p] += dt * heat - h.specific_heat[b] * (d[p] - d_grid) * relax[b];
   }
 }
 

@@ -61,8 +61,8 @@ struct Model {
   // of this times |tr D|, so that the step cfl h / signal keeps |tr D| dt <= max_volume_change.
   double volume_change_signal;
   double speed_limit;  // |v| above this is a numerical runaway, not physics
-  double conductivity = 0.0;   // k with heat_conduction = on, else 0
-  double diffusivity = 0.0;    // k / (rho0 c_v) [m2/s]
+  // With heat_conduction = on, each body's k [W/(m K)] and diffusivity k / (rho0 c_v) [m2/s]; else 0.
+  std::array<double, kBodies> conductivity{}, diffusivity{};
   bool symmetry_plane = false;  // symmetry = on: the target alone, mirrored about y = 0
   bool skip_unreached = false;  // advance material nothing has reached in closed form (unreached.hpp)
   bool volumetric_smoothing = false;  // volumetric_smoothing.hpp
@@ -86,12 +86,14 @@ struct Model {
   double shear_modulus(Body b) const;
   bool has_strength() const { return has_stress(strength[0]); }
   bool has_failure() const { return std::holds_alternative<Spall>(failure); }
-  bool conducts_heat() const { return conductivity > 0.0; }
+  bool conducts_heat() const { return *std::max_element(conductivity.begin(), conductivity.end()) > 0.0; }
+  double max_diffusivity() const { return *std::max_element(diffusivity.begin(), diffusivity.end()); }
   // The time step the physics allows: cfl h over the fastest signal (which counts the fastest
-  // volume change, volume_change_signal), and with conduction the explicit diffusion bound 0.2 h^2 / alpha.
+  // volume change, volume_change_signal), and with conduction the explicit diffusion bound 0.2 h^2 / alpha
+  // of the most diffusive body.
   double time_step(double max_signal) const {
     const double mechanical = cfl * cell_size / max_signal;
-    return conducts_heat() ? std::min(mechanical, 0.2 * cell_size * cell_size / diffusivity) : mechanical;
+    return conducts_heat() ? std::min(mechanical, 0.2 * cell_size * cell_size / max_diffusivity()) : mechanical;
   }
 };
 
