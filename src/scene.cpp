@@ -869,7 +869,7 @@ void set_material_key(Scene& scene, const Entry& e) {
   }
   Scene holder;  // the key sets Scene::material: set it on a scene holding this material
   const auto it = scene.materials.find(name);
-  // A new material starts from aluminium's constants, without its (6061-T6) Johnson-Cook ones.
+  // A new material starts from aluminium's constants, without its (6061-T6) Johnson-Cook and its Tillotson ones.
   holder.material = it != scene.materials.end() ? it->second : without_tillotson(without_johnson_cook(Material{}));
   k->set(holder, e.value, e.at);
   scene.materials[name] = holder.material;
@@ -1012,7 +1012,14 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   // constants. Errors name the equation_of_state key the scene set (where it set one).
   if (materials_known) {
     auto eos_key = [&](const std::string& name) { return (name == "scene" ? "" : "material." + name + ".") + std::string("equation_of_state"); };
-    auto law_name = [](EquationOfStateModel m) { return m == EquationOfStateModel::tillotson ? "tillotson" : "mie_gruneisen"; };
+    auto law_name = [](const Material& m) {
+      Scene holder;  // the material keys read Scene::material
+      holder.material = m;
+      return find_key("equation_of_state")->get(holder);
+    };
+    auto material_named = [](const std::string& name) {
+      return name == "scene" ? std::string("the scene's own material (the bare keys)") : "material " + name;
+    };
     const std::string& target = s.material_name(Body::target);
     const EquationOfStateModel law = s.material_of(Body::target).equation_of_state;
     std::vector<std::string> checked;
@@ -1024,23 +1031,32 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
       const Material& m = s.material_of(b);
       if (m.equation_of_state != law) {
         const std::string key = s.origin.count(eos_key(name)) || !s.origin.count(eos_key(target)) ? eos_key(name) : eos_key(target);
-        fail(key, std::string("every body takes the same equation of state: the target's material ") + target + " has " +
-                      law_name(law) + ", material " + name + " " + law_name(m.equation_of_state));
+        fail(key, "every body takes the same equation of state: the target's, " + material_named(target) + ", has " +
+                      law_name(s.material_of(Body::target)) + ", " + material_named(name) + " " + law_name(m));
         continue;
       }
       if (m.equation_of_state != EquationOfStateModel::tillotson) continue;
       if (!m.has_tillotson())
-        fail(eos_key(name), "is tillotson, but material " + name + " has no Tillotson constants: give its " + prefix +
+        fail(eos_key(name), "is tillotson, but " + material_named(name) + " has no Tillotson constants: give its " + prefix +
                                 "tillotson_* keys (mpmshock --keys)");
       else if (!(m.tillotson_energy > 0.0))
-        fail(prefix + "tillotson_energy", "must be > 0 with equation_of_state = tillotson (material " + name + ")");
+        fail(prefix + "tillotson_energy", "must be > 0 with equation_of_state = tillotson (" + material_named(name) + ")");
       else if (!(m.tillotson_complete_vaporisation > m.tillotson_incipient_vaporisation))
         fail(prefix + "tillotson_complete_vaporisation",
-             "must exceed tillotson_incipient_vaporisation (material " + name + ")");
+             "must exceed tillotson_incipient_vaporisation (" + material_named(name) + ")");
       if (m.bound_expansion)
-        fail(prefix + "bounded_expansion", "is Mie-Grüneisen's expanded branch; Tillotson has its own (material " +
-                                               name + "): leave it off with equation_of_state = tillotson");
+        fail(prefix + "bounded_expansion", "is Mie-Grüneisen's expanded branch; Tillotson has its own (" +
+                                               material_named(name) + "): leave it off with equation_of_state = tillotson");
     }
+    // The paper's model adds the plastic heat to the reference curve's temperature, which carries
+    // the shock heating only where that curve is the Hugoniot.
+    if (law == EquationOfStateModel::tillotson && s.effects.thermal && s.temperature_model == TemperatureModel::paper)
+      fail("temperature_model", "paper needs equation_of_state = mie_gruneisen: it adds the plastic heat to the "
+                                "Hugoniot's temperature, and Tillotson's reference is its isentrope (the shock "
+                                "heating would be lost)");
+    if (law == EquationOfStateModel::tillotson && s.effects.thermal && s.paper_temperature)
+      fail("paper_temperature", "needs equation_of_state = mie_gruneisen: the paper's model adds the plastic heat "
+                                "to the Hugoniot's temperature, and Tillotson's reference is its isentrope");
   }
   if (s.has_window() && !is_multiple(s.window_height, a))
     fail("window_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
@@ -1097,7 +1113,10 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   for (const Body b : {Body::flyer, Body::target, Body::window}) {
     if (b == Body::window && !s.has_window()) continue;
     const Material& mat = materials_known ? s.material_of(b) : s.material;
-    const double cL2 = mat.sound_speed * mat.sound_speed +
+    const double c0 = mat.equation_of_state == EquationOfStateModel::tillotson
+                          ? std::sqrt(mat.tillotson_bulk_modulus / mat.density)
+                          : mat.sound_speed;
+    const double cL2 = c0 * c0 +
                        (s.effects.plasticity ? (4.0 / 3.0) * mat.shear_modulus() / mat.density : 0.0);
     signal = std::max(signal, std::sqrt(cL2) + (b == Body::flyer ? s.flyer_velocity : s.target_velocity));
   }
@@ -1346,7 +1365,7 @@ std::string material_library_text() {
   std::string out =
       "# The built-in materials: flyer_material = NAME, target_material = NAME; each line is a key a\n"
       "# scene may set to change it (material.NAME.KEY = value); a new NAME starts from aluminium\n"
-      "# (without its Johnson-Cook constants).\n";
+      "# (without its Johnson-Cook and Tillotson constants).\n";
   for (const LibraryMaterial& m : material_library()) {
     out += "\n# " + m.name + ": " + m.source + "\n" + material_lines(m.name, m.constants);
   }

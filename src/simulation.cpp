@@ -533,7 +533,8 @@ void Simulation<D>::describe_point(std::ostream& out, StepStatus::Code code, std
     case StepStatus::Code::bad_state:
       out << "material point " << id << " reached a non-physical state";
       if (!(J > 0.0)) out << " (J = det F <= 0: the point turned inside out)";
-      else if (!(J > model_.limiting_compression(pts.body[p]))) out << " (compressed past the Hugoniot's limit J = 1 - 1/s)";
+      else if (!(J > model_.limiting_compression(pts.body[p])))
+        out << " (compressed past its equation of state's limit J = " << model_.limiting_compression(pts.body[p]) << ")";
       else if (!std::isfinite(pts.P[p]) || !std::isfinite(pts.E[p])) out << " (non-finite pressure or energy)";
       else out << " (runaway speed above " << model_.speed_limit << " m/s)";
       break;

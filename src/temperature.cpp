@@ -25,8 +25,9 @@ struct WalshChristian {
 HugoniotTemperature::HugoniotTemperature(const Material& mat, TemperatureModel model, bool report_paper,
                                          int intervals)
     : model_(model), report_paper_(report_paper), eos_(mat), cv_(mat.specific_heat), T0_(mat.initial_temperature), gamma0_(mat.gruneisen_gamma) {
+  // Equations of state without a Hugoniot in closed form take the isentrope (one line each).
   if (mat.equation_of_state == EquationOfStateModel::tillotson) {
-    tabulate_isentrope(mat, intervals);
+    tabulate_isentrope(Tillotson(mat), intervals);
     return;
   }
   const double J_limit = eos_.limiting_compression();
@@ -56,50 +57,51 @@ HugoniotTemperature::HugoniotTemperature(const Material& mat, TemperatureModel m
   }
 }
 
-void HugoniotTemperature::tabulate_isentrope(const Material& mat, int intervals) {
-  const Tillotson eos(mat);
-  constexpr double kTop = 4.0;  // the largest J tabulated
+template <class Eos>
+void HugoniotTemperature::tabulate_isentrope(const Eos& eos, int intervals) {
+  constexpr double kTop = 100.0;  // the largest J tabulated
+  constexpr int kExpandedPerCompressed = 4;  // ln J spacing 1.1e-3 for 4096 intervals
   const double J_limit = eos.limiting_compression();
   J_min_ = J_limit + 0.02 * (1.0 - J_limit);
   dJ_ = (1.0 - J_min_) / intervals;
-  const auto above = static_cast<int>(std::ceil((kTop - 1.0) / dJ_));
-  const std::size_t nodes = static_cast<std::size_t>(intervals + above) + 1, one = static_cast<std::size_t>(intervals);
-  isentrope_energy_.assign(nodes, 0.0);
-  isentrope_temperature_.assign(nodes, T0_);
-  // d(E, T)/dJ along the isentrope.
+  const int expanded = kExpandedPerCompressed * intervals;
+  dlnJ_ = std::log(kTop) / expanded;
+  compressed_nodes_ = static_cast<std::size_t>(intervals) + 1;
+  isentrope_.assign(compressed_nodes_ + static_cast<std::size_t>(expanded), IsentropeNode{0.0, T0_});
+  // d(E, T)/dx along the isentrope, x = J in compression and ln J in expansion (dJ/dx = J there).
   const double rho0 = eos.rho0();
-  auto rhs = [&](double J, double E, double T, double& dE, double& dT) {
-    dE = -eos.pressure(J, E) / rho0;
-    dT = -T * eos.pressure_energy_slope(J, E) / rho0;
+  auto rhs = [&](bool log_step, double x, double E, double T, double& dE, double& dT) {
+    const double J = log_step ? std::exp(x) : x, dJ_dx = log_step ? J : 1.0;
+    dE = -eos.pressure(J, E) / rho0 * dJ_dx;
+    dT = -T * eos.pressure_energy_slope(J, E) / rho0 * dJ_dx;
   };
   // RK4 with 8 substeps per table interval, from J = 1 down to J_min and up to the top.
   constexpr int kSub = 8;
-  for (const int direction : {-1, 1}) {
-    double J = 1.0, E = 0.0, T = T0_;
-    const double h = direction * dJ_ / kSub;
-    const int steps = direction < 0 ? intervals : above;
+  for (const bool up : {false, true}) {
+    double x = up ? 0.0 : 1.0, E = 0.0, T = T0_;
+    const double h = up ? dlnJ_ / kSub : -dJ_ / kSub;
+    const int steps = up ? expanded : intervals;
     for (int k = 1; k <= steps; ++k) {
       for (int sub = 0; sub < kSub; ++sub) {
         double e1, t1, e2, t2, e3, t3, e4, t4;
-        rhs(J, E, T, e1, t1);
-        rhs(J + 0.5 * h, E + 0.5 * h * e1, T + 0.5 * h * t1, e2, t2);
-        rhs(J + 0.5 * h, E + 0.5 * h * e2, T + 0.5 * h * t2, e3, t3);
-        rhs(J + h, E + h * e3, T + h * t3, e4, t4);
+        rhs(up, x, E, T, e1, t1);
+        rhs(up, x + 0.5 * h, E + 0.5 * h * e1, T + 0.5 * h * t1, e2, t2);
+        rhs(up, x + 0.5 * h, E + 0.5 * h * e2, T + 0.5 * h * t2, e3, t3);
+        rhs(up, x + h, E + h * e3, T + h * t3, e4, t4);
         E += h / 6.0 * (e1 + 2.0 * e2 + 2.0 * e3 + e4);
         T += h / 6.0 * (t1 + 2.0 * t2 + 2.0 * t3 + t4);
-        J += h;
+        x += h;
       }
-      const std::size_t node = direction < 0 ? one - static_cast<std::size_t>(k) : one + static_cast<std::size_t>(k);
-      isentrope_energy_[node] = E;
-      isentrope_temperature_[node] = T;
+      const std::size_t one = compressed_nodes_ - 1;  // the J = 1 node
+      isentrope_[up ? one + static_cast<std::size_t>(k) : one - static_cast<std::size_t>(k)] = {E, T};
     }
   }
 }
 
 double HugoniotTemperature::hugoniot_temperature(double J) const {
-  if (!isentrope_temperature_.empty()) {
+  if (!isentrope_.empty()) {
     if (!(J >= J_min_)) return std::numeric_limits<double>::infinity();
-    return isentrope_lookup(isentrope_temperature_, J);
+    return isentrope_lookup(J).temperature;
   }
   if (J >= 1.0) return T0_ * std::exp(gamma0_ * (1.0 - J));
   if (!(J >= J_min_)) return std::numeric_limits<double>::infinity();

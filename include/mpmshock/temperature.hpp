@@ -5,8 +5,8 @@
 // With Tillotson's equation of state (equation_of_state = tillotson), which has no Hugoniot of
 // closed form, the reference curve is instead the isentrope through the reference state (J = 1,
 // E = 0, T0): dE_s/dJ = -P(J, E_s) / rho0, dT_s/dJ = -T_s (dP/dE)_V / rho0, tabulated at start-up
-// for J from near 0.2 to 4 (beyond 4 the values at 4), and T = T_s(V) + (E - E_s(V)) / c_v; the same
-// constant c_v, so the two reference curves give one temperature where they meet (tested).
+// (uniform in J from near the EOS's limiting compression to 1, uniform in ln J from 1 to 100; beyond
+// 100 the values at 100), and T = T_s(V) + (E - E_s(V)) / c_v with the same constant c_v.
 //   (Below, T_H and E_H stand for whichever reference curve the material's equation of state has.)
 //   paper:            T = T_H(V) + W_p / c_v, W_p the plastic work turned to heat. The paper's text
 //                     takes E - E_H as plastic energy, but its reported temperatures (432 K at
@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -46,7 +47,7 @@ class HugoniotTemperature {
   double hugoniot_temperature(double J) const;
   // E_H(J), the reference curve's energy.
   double reference_energy(double J) const {
-    return isentrope_energy_.empty() ? eos_.hugoniot_energy(J) : isentrope_lookup(isentrope_energy_, J);
+    return isentrope_.empty() ? eos_.hugoniot_energy(J) : isentrope_lookup(J).energy;
   }
 
   // T = T_H(J) + (E - E_H(J)) / c_v, held at T_m(J) while the latent heat is taken up.
@@ -87,14 +88,28 @@ class HugoniotTemperature {
   double min_tabulated_J() const { return J_min_; }
 
  private:
-  // Tillotson's reference isentrope (see the top of the file).
-  void tabulate_isentrope(const Material& mat, int intervals);
-  double isentrope_lookup(const std::vector<double>& table, double J) const {
-    const double u = std::min((J - J_min_) / dJ_, static_cast<double>(table.size() - 1));
-    const auto k = static_cast<std::size_t>(u);
-    if (k + 1 >= table.size()) return table.back();
-    const double frac = u - static_cast<double>(k);
-    return table[k] + frac * (table[k + 1] - table[k]);
+  // The reference isentrope of an equation of state without a Hugoniot in closed form (see the top
+  // of the file): `Eos` offers rho0, limiting_compression, pressure and pressure_energy_slope.
+  template <class Eos>
+  void tabulate_isentrope(const Eos& eos, int intervals);
+  struct IsentropeNode {
+    double energy, temperature;
+  };
+  IsentropeNode isentrope_lookup(double J) const {
+    double u;
+    std::size_t base = 0;  // the J = 1 node's index: the compressed nodes come first
+    if (!(J >= J_min_)) return isentrope_.front();  // (J_min: a refused state; NaN too)
+    if (J <= 1.0) {
+      u = (J - J_min_) / dJ_;
+    } else {
+      base = compressed_nodes_ - 1;
+      u = std::min(std::log(J) / dlnJ_, static_cast<double>(isentrope_.size() - 1 - base));
+    }
+    const auto k = base + static_cast<std::size_t>(u);
+    if (k + 1 >= isentrope_.size()) return isentrope_.back();
+    const double frac = u - std::floor(u);
+    const IsentropeNode &a = isentrope_[k], &b = isentrope_[k + 1];
+    return {a.energy + frac * (b.energy - a.energy), a.temperature + frac * (b.temperature - a.temperature)};
   }
 
   TemperatureModel model_ = TemperatureModel::energy;
@@ -105,8 +120,11 @@ class HugoniotTemperature {
   MeltCurve melt_;
   double latent_heat_ = 0.0;
   std::vector<double> table_;  // table_[k] = T_H(1 - k dJ)
-  // With Tillotson: E_s and T_s at J = J_min + k dJ, up to J = 4 (empty with Mie-Grüneisen).
-  std::vector<double> isentrope_energy_, isentrope_temperature_;
+  // With Tillotson: E_s and T_s at J = J_min + k dJ up to 1 (compressed_nodes_ of them), then at
+  // J = exp(k dlnJ) up to 100 (empty with Mie-Grüneisen).
+  std::vector<IsentropeNode> isentrope_;
+  std::size_t compressed_nodes_ = 0;
+  double dlnJ_ = 0.0;
 };
 
 // The temperature models of the bodies, each of its own material (flyer_material,

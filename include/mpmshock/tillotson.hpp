@@ -12,7 +12,8 @@
 // derivatives in closed form (tests/test_tillotson.cpp checks them against differences).
 //
 // Limits, stated rather than hidden: the cold expanded branch bounds the tension at A^2 / (4 B)
-// (21.7 GPa for aluminium, at mu = -A / (2 B)) and keeps -A + B at full expansion; a state with
+// where B >= A / 2 (21.75 GPa for aluminium, at mu = -A / (2 B); with a smaller B the bound is A - B,
+// at full expansion) and keeps -A + B at full expansion; a state with
 // omega <= 0 (E below -E0 eta^2, far colder than 0 K) has no pressure (NaN, a bad state); J at or
 // below limiting_compression() is refused like the Us-up pole (Tillotson has no pole).
 #pragma once
