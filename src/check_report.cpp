@@ -136,8 +136,11 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   if (s.material_of(Body::flyer).bound_expansion || s.material_of(Body::target).bound_expansion ||
       (s.has_window() && s.material_of(Body::window).bound_expansion))
     on.push_back("bounded expansion (Rose binding curve)");
-  if (std::holds_alternative<Tillotson>(model.eos[index_of(Body::target)]))
-    on.push_back("Tillotson equation of state (compressed, expanded and vapour branches)");
+  for (const Body b : {Body::target, Body::flyer, Body::window})
+    if ((b != Body::window || s.has_window()) && s.material_of(b).equation_of_state == EquationOfStateModel::tillotson) {
+      on.push_back("Tillotson equation of state (compressed, expanded and vapour branches)");
+      break;
+    }
   if (s.effects.artificial_viscosity) {
     std::ostringstream av;
     av << "artificial viscosity (A1 " << s.av_linear << ", A2 " << s.av_quadratic << ")";

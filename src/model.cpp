@@ -43,7 +43,7 @@ StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
   return VonMises<true>(mat);
 }
 
-EquationOfState equation_of_state_of(const Material& mat) {
+EquationOfStateLaw equation_of_state_of(const Material& mat) {
   if (mat.equation_of_state == EquationOfStateModel::tillotson) return Tillotson(mat);
   return MieGruneisen(mat);
 }
@@ -61,6 +61,20 @@ std::array<const Material*, kBodies> body_materials(const Scene& s) {
   return {&s.material_of(Body::flyer), &target, s.has_window() ? &s.material_of(Body::window) : &target};
 }
 
+// Each body's equation of state: its law's type where the bodies share one law, else each wrapped
+// (mixed_equation_of_state.hpp), so that the kernels see one type.
+std::array<EquationOfState, kBodies> equations_of_state(const std::array<const Material*, kBodies>& m) {
+  std::array<EquationOfStateLaw, kBodies> laws{equation_of_state_of(*m[0]), equation_of_state_of(*m[1]),
+                                               equation_of_state_of(*m[2])};
+  const bool one_law = laws[0].index() == laws[1].index() && laws[0].index() == laws[2].index();
+  std::array<EquationOfState, kBodies> eos;
+  for (std::size_t b = 0; b < kBodies; ++b) {
+    if (!one_law) eos[b] = MixedEquationOfState(laws[b]);
+    else std::visit([&](const auto& law) { eos[b] = law; }, laws[b]);
+  }
+  return eos;
+}
+
 }  // namespace
 
 bool kinematic_hardening(const Scene& s) {
@@ -72,7 +86,7 @@ Model::Model(const Scene& s) : Model(s, body_materials(s), kinematic_hardening(s
 
 Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool back_stress)
     : shape(shape_of(s)),
-      eos{equation_of_state_of(*m[0]), equation_of_state_of(*m[1]), equation_of_state_of(*m[2])},
+      eos(equations_of_state(m)),
       strength{strength_of(s, *m[0], back_stress), strength_of(s, *m[1], back_stress),
                strength_of(s, *m[2], back_stress)},
       viscosity(viscosity_of(s)),

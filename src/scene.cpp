@@ -1008,20 +1008,12 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                                                  name + "): the material would start molten");
     }
   }
-  // The equation of state: every body's of one law (the kernels hold one type), each with its
-  // constants. Errors name the equation_of_state key the scene set (where it set one).
+  // The equation of state: each body's with its constants (bodies of different laws: model.cpp).
   if (materials_known) {
-    auto eos_key = [&](const std::string& name) { return (name == "scene" ? "" : "material." + name + ".") + std::string("equation_of_state"); };
-    auto law_name = [](const Material& m) {
-      Scene holder;  // the material keys read Scene::material
-      holder.material = m;
-      return find_key("equation_of_state")->get(holder);
-    };
     auto material_named = [](const std::string& name) {
       return name == "scene" ? std::string("the scene's own material (the bare keys)") : "material " + name;
     };
-    const std::string& target = s.material_name(Body::target);
-    const EquationOfStateModel law = s.material_of(Body::target).equation_of_state;
+    bool any_tillotson = false;
     std::vector<std::string> checked;
     for (const Body b : {Body::target, Body::flyer, Body::window}) {
       const std::string& name = s.material_name(b);
@@ -1029,16 +1021,12 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
       checked.push_back(name);
       const std::string prefix = name == "scene" ? "" : "material." + name + ".";
       const Material& m = s.material_of(b);
-      if (m.equation_of_state != law) {
-        const std::string key = s.origin.count(eos_key(name)) || !s.origin.count(eos_key(target)) ? eos_key(name) : eos_key(target);
-        fail(key, "every body takes the same equation of state: the target's, " + material_named(target) + ", has " +
-                      law_name(s.material_of(Body::target)) + ", " + material_named(name) + " " + law_name(m));
-        continue;
-      }
       if (m.equation_of_state != EquationOfStateModel::tillotson) continue;
+      any_tillotson = true;
       if (!m.has_tillotson())
-        fail(eos_key(name), "is tillotson, but " + material_named(name) + " has no Tillotson constants: give its " + prefix +
-                                "tillotson_* keys (mpmshock --keys)");
+        fail(prefix + "equation_of_state", "is tillotson, but " + material_named(name) +
+                                               " has no Tillotson constants: give its " + prefix +
+                                               "tillotson_* keys (mpmshock --keys)");
       else if (!(m.tillotson_energy > 0.0))
         fail(prefix + "tillotson_energy", "must be > 0 with equation_of_state = tillotson (" + material_named(name) + ")");
       else if (!(m.tillotson_complete_vaporisation > m.tillotson_incipient_vaporisation))
@@ -1050,11 +1038,11 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     }
     // The paper's model adds the plastic heat to the reference curve's temperature, which carries
     // the shock heating only where that curve is the Hugoniot.
-    if (law == EquationOfStateModel::tillotson && s.effects.thermal && s.temperature_model == TemperatureModel::paper)
+    if (any_tillotson && s.effects.thermal && s.temperature_model == TemperatureModel::paper)
       fail("temperature_model", "paper needs equation_of_state = mie_gruneisen: it adds the plastic heat to the "
                                 "Hugoniot's temperature, and Tillotson's reference is its isentrope (the shock "
                                 "heating would be lost)");
-    if (law == EquationOfStateModel::tillotson && s.effects.thermal && s.paper_temperature)
+    if (any_tillotson && s.effects.thermal && s.paper_temperature)
       fail("paper_temperature", "needs equation_of_state = mie_gruneisen: the paper's model adds the plastic heat "
                                 "to the Hugoniot's temperature, and Tillotson's reference is its isentrope");
   }

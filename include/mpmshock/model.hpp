@@ -12,6 +12,7 @@
 #include "mpmshock/artificial_viscosity.hpp"
 #include "mpmshock/eos.hpp"
 #include "mpmshock/johnson_cook.hpp"
+#include "mpmshock/mixed_equation_of_state.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/spall.hpp"
@@ -21,7 +22,15 @@
 
 namespace mpmshock {
 
-using EquationOfState = std::variant<MieGruneisen, Tillotson>;
+// A body's equation of state in the kernels: its law's own type where every body has that law, else
+// each body's law through MixedEquationOfState (the laws are listed once, in EquationOfStateLaw).
+template <class Variant, class T>
+struct VariantWith;
+template <class... Laws, class T>
+struct VariantWith<std::variant<Laws...>, T> {
+  using type = std::variant<Laws..., T>;
+};
+using EquationOfState = VariantWith<EquationOfStateLaw, MixedEquationOfState>::type;
 using StrengthLaw =
     std::variant<NoStrength, VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>, JohnsonCook>;
 using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
@@ -33,7 +42,7 @@ using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape
 // bodies' laws are one type).
 StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress = false);
 // A material's equation of state.
-EquationOfState equation_of_state_of(const Material& mat);
+EquationOfStateLaw equation_of_state_of(const Material& mat);
 // Whether either body's material hardens kinematically (hardening_beta < 1): then both store a back stress.
 bool kinematic_hardening(const Scene& s);
 // The Lindemann melt curve of a scene (thermal_softening.hpp).

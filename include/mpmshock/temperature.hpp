@@ -89,7 +89,7 @@ class HugoniotTemperature {
 
  private:
   // The reference isentrope of an equation of state without a Hugoniot in closed form (see the top
-  // of the file): `Eos` offers rho0, limiting_compression, pressure and pressure_energy_slope.
+  // of the file): `Eos` offers rho0, limiting_compression and pressure_and_energy_slope.
   template <class Eos>
   void tabulate_isentrope(const Eos& eos, int intervals);
   struct IsentropeNode {

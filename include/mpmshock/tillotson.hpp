@@ -55,6 +55,14 @@ class Tillotson {
   double pressure(double J, double E) const { return terms(J, E).P; }
   // (dP/dE) at fixed volume: gamma / V, the Grüneisen parameter's share of the state.
   double pressure_energy_slope(double J, double E) const { return terms(J, E).dP_dE; }
+  // Both at once, for the isentrope's tabulation (temperature.cpp).
+  struct PressureAndSlope {
+    double pressure, energy_slope;
+  };
+  PressureAndSlope pressure_and_energy_slope(double J, double E) const {
+    const Terms t = terms(J, E);
+    return {t.P, t.dP_dE};
+  }
   // The squared sound speed of a state (P follows from J and E).
   double sound_speed_squared(double J, double E, double /*P*/) const { return state(J, E).sound_speed_squared; }
 
