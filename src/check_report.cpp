@@ -1,4 +1,5 @@
 // The --check report: what a scene builds, what it will cost, before anything runs.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -128,9 +129,19 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
     on.push_back(thermal + ")");
   }
   if (s.effects.thermal_softening) {
+    // Each body's material's melt curve (the target's first; a body of the same material adds none).
     std::ostringstream melt;
-    melt << "melting (T_m0 " << s.melt_temperature << " K, Lindemann a " << s.lindemann_a << ", latent heat "
-         << s.latent_heat << " J/kg)";
+    melt << "melting (";
+    std::vector<std::string> named;
+    for (const Body b : {Body::target, Body::flyer, Body::window}) {
+      const std::string& name = s.material_name(b);
+      if ((b == Body::window && !s.has_window()) || std::count(named.begin(), named.end(), name)) continue;
+      const Material& m = s.material_of(b);
+      melt << (named.empty() ? "" : "; ") << (name == "scene" ? "" : name + ": ") << "T_m0 " << m.melt_temperature
+           << " K, Lindemann a " << m.lindemann_a << ", latent heat " << m.latent_heat << " J/kg";
+      named.push_back(name);
+    }
+    melt << ")";
     on.push_back(melt.str());
   }
   if (s.material_of(Body::flyer).bound_expansion || s.material_of(Body::target).bound_expansion ||

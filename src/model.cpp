@@ -21,13 +21,13 @@ ViscosityLaw viscosity_of(const Scene& s) {
 
 }  // namespace
 
-ThermalSoftening softening_of(const Scene& s) {
+ThermalSoftening softening_of(const Material& mat) {
   ThermalSoftening soft;
-  soft.melt = melt_curve_of(s);
-  soft.T_s = s.softening_temperature;
-  soft.pressure_hardening = 1.0 / s.pressure_hardening_scale;
-  soft.yield_max = s.yield_stress_max;
-  soft.latent_heat = s.latent_heat;
+  soft.melt = melt_curve_of(mat);
+  soft.T_s = mat.softening_temperature;
+  soft.pressure_hardening = 1.0 / mat.pressure_hardening_scale;
+  soft.yield_max = mat.yield_stress_max;
+  soft.latent_heat = mat.latent_heat;
   return soft;
 }
 
@@ -36,8 +36,8 @@ StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
   if (s.strength_model == StrengthModel::johnson_cook) return JohnsonCook(mat);  // isotropic, its own softening (scene.cpp)
   const bool isotropic = mat.hardening_beta == 1.0 && !back_stress;
   if (s.effects.thermal_softening) {
-    if (isotropic) return VonMises<false, true>(mat, softening_of(s));
-    return VonMises<true, true>(mat, softening_of(s));
+    if (isotropic) return VonMises<false, true>(mat, softening_of(mat));
+    return VonMises<true, true>(mat, softening_of(mat));
   }
   if (isotropic) return VonMises<false>(mat);
   return VonMises<true>(mat);
@@ -48,9 +48,7 @@ EquationOfStateLaw equation_of_state_of(const Material& mat) {
   return MieGruneisen(mat);
 }
 
-MeltCurve melt_curve_of(const Scene& s) {
-  return {s.melt_temperature, s.lindemann_a, s.material_of(Body::target).gruneisen_gamma};  // one material (scene.cpp)
-}
+MeltCurve melt_curve_of(const Material& mat) { return {mat.melt_temperature, mat.lindemann_a, mat.gruneisen_gamma}; }
 
 namespace {
 
@@ -100,7 +98,9 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool
                           std::max({reference_sound_speed(Body::flyer), reference_sound_speed(Body::target),
                                     reference_sound_speed(Body::window)}))) {
   if (s.effects.thermal) thermal.emplace(*m[0], *m[1], *m[2], s.temperature_model, s.paper_temperature);
-  if (thermal && s.effects.thermal_softening) thermal->set_melting(melt_curve_of(s), s.latent_heat);
+  if (thermal && s.effects.thermal_softening)
+    for (const Body b : {Body::flyer, Body::target, Body::window})
+      thermal->set_melting(b, melt_curve_of(*m[index_of(b)]), m[index_of(b)]->latent_heat);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;
   volumetric_smoothing = s.volumetric_smoothing;

@@ -86,7 +86,7 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run, bool fa
   const std::string name = snapshot_name(run.schedule.snapshot_index);
   SnapshotOptions<D> options;
   options.compression = fast ? 0 : static_cast<int>(scene_.snapshot_compression);
-  options.melt = melt_curve_of(scene_);
+  for (const Body b : {Body::flyer, Body::target, Body::window}) options.melt[index_of(b)] = melt_curve_of(scene_.material_of(b));
   // A body of Johnson-Cook strength melts at its law's T_m (the model's laws, resolved per body).
   for (std::size_t b = 0; b < kBodies; ++b)
     if (const auto* jc = std::get_if<JohnsonCook>(&sim.model().strength[b])) options.melt_temperature[b] = jc->T_m;

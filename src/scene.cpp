@@ -450,31 +450,9 @@ const std::vector<Key>& keys() {
     k.push_back(flag("thermal_softening", "off",
                      "Steinberg-Guinan: shear modulus and yield stress scaled by 1 + P J^(1/3) / "
                      "pressure_hardening_scale - (T - 300 K) / (softening_temperature - 300 K), the yield capped "
-                     "at yield_stress_max, both zero in the melt, which takes latent_heat (6061-T6 values; needs "
-                     "plasticity and thermal on)",
+                     "at yield_stress_max, both zero in the melt, which takes latent_heat, each body with its "
+                     "material's constants (built in: aluminium 6061-T6, copper, LiF); needs plasticity and thermal on",
                      FIELD(effects.thermal_softening)));
-    k.push_back(quantity("softening_temperature", D::temperature, Range{300.0, 1e5, true, false}, "1923 K",
-                         "temperature at which linear softening would take G and sigma_Y to zero (Steinberg-Guinan "
-                         "6061-T6: 300 K + 1/(6.16e-4 /K))",
-                         FIELD(softening_temperature)));
-    k.push_back(quantity("melt_temperature", D::temperature, Range{0.0, 1e5, true, false}, "1220 K",
-                         "melt temperature at J = 1; T_m(J) = T_m0 exp(2a(1 - J)) J^(-2(gamma0 - a - 1/3)) (Lindemann)",
-                         FIELD(melt_temperature)));
-    k.push_back(quantity("lindemann_a", D::none, closed(0.0, 10.0), "1.5",
-                         "volume coefficient a of the Lindemann melt curve (Steinberg-Guinan aluminium)",
-                         FIELD(lindemann_a)));
-    k.push_back(quantity("pressure_hardening_scale", D::pressure, positive(), "15.337 GPa",
-                         "with thermal_softening: Steinberg-Guinan's pressure term A P eta^(-1/3), A = 1 / this "
-                         "(6061-T6: A = 6.52 /Mbar); pressure stiffens G and sigma_Y",
-                         FIELD(pressure_hardening_scale)));
-    k.push_back(quantity("yield_stress_max", D::pressure, positive(), "680 MPa",
-                         "with thermal_softening: Steinberg-Guinan's cap Y_max on the work-hardened yield stress "
-                         "(6061-T6)",
-                         FIELD(yield_stress_max)));
-    k.push_back(quantity("latent_heat", D::specific_energy, non_negative(), "397 kJ/kg",
-                         "with thermal_softening: heat of fusion taken at the melt temperature before the temperature "
-                         "rises further (aluminium, CRC Handbook)",
-                         FIELD(latent_heat)));
     k.push_back(quantity("taylor_quinney", D::none, closed(0.0, 1.0), "1",
                          "share of plastic work that becomes heat; the rest is stored as cold work",
                          FIELD(taylor_quinney)));
@@ -521,6 +499,29 @@ const std::vector<Key>& keys() {
                          "the largest particle velocity the Us-up fit describes (217 GPa on the aluminium Hugoniot); "
                          "points compressed past its Hugoniot state are counted as outside the equation of state's range",
                          FIELD(material.fit_particle_velocity)));
+    k.push_back(quantity("softening_temperature", D::temperature, Range{0.0, 1e5, true, false}, "1923 K",
+                         "with thermal_softening: temperature at which linear softening would take G and sigma_Y to "
+                         "zero, 300 K + 1/B (Steinberg-Guinan 6061-T6: B = 6.16e-4 /K)",
+                         FIELD(material.softening_temperature)));
+    k.push_back(quantity("melt_temperature", D::temperature, Range{0.0, 1e5, true, false}, "1220 K",
+                         "with thermal_softening: melt temperature at J = 1; T_m(J) = T_m0 exp(2a(1 - J)) "
+                         "J^(-2(gamma0 - a - 1/3)) (Lindemann); 0: the material has no Steinberg-Guinan constants",
+                         FIELD(material.melt_temperature)));
+    k.push_back(quantity("lindemann_a", D::none, closed(0.0, 10.0), "1.5",
+                         "volume coefficient a of the Lindemann melt curve (Steinberg-Guinan 6061-T6)",
+                         FIELD(material.lindemann_a)));
+    k.push_back(quantity("pressure_hardening_scale", D::pressure, non_negative(), "15.337 GPa",
+                         "with thermal_softening: Steinberg-Guinan's pressure term A P eta^(-1/3), A = 1 / this "
+                         "(6061-T6: A = 6.52 /Mbar); pressure stiffens G and sigma_Y",
+                         FIELD(material.pressure_hardening_scale)));
+    k.push_back(quantity("yield_stress_max", D::pressure, non_negative(), "680 MPa",
+                         "with thermal_softening: Steinberg-Guinan's cap Y_max on the work-hardened yield stress "
+                         "(6061-T6)",
+                         FIELD(material.yield_stress_max)));
+    k.push_back(quantity("latent_heat", D::specific_energy, non_negative(), "397 kJ/kg",
+                         "with thermal_softening: heat of fusion taken at the melt temperature before the temperature "
+                         "rises further (aluminium, CRC Handbook)",
+                         FIELD(material.latent_heat)));
     k.push_back(choice<EquationOfStateModel>(
         "equation_of_state", {{"mie_gruneisen", EquationOfStateModel::mie_gruneisen}, {"tillotson", EquationOfStateModel::tillotson}},
         "mie_gruneisen",
@@ -916,20 +917,6 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                              format_number(a) + " m)");
   if (s.effects.thermal_softening && !(s.effects.thermal && s.effects.plasticity))
     fail("thermal_softening", "needs thermal = on and plasticity = on (it softens the strength by temperature)");
-  if (s.effects.thermal_softening) {
-    // A starting state the material cannot have: at or above its softening or melt temperature it
-    // has no strength before anything happens.
-    const double T0 = s.material.initial_temperature;
-    if (s.softening_temperature <= T0)
-      fail("softening_temperature", "must be above initial_temperature (" + format_number(T0) +
-                                        " K): the material would start with no strength");
-    if (s.melt_temperature <= T0)
-      fail("melt_temperature", "must be above initial_temperature (" + format_number(T0) +
-                                   " K): the material would start molten");
-    if (s.yield_stress_max < s.material.yield_stress)
-      fail("yield_stress_max", "must be at least yield_stress (" + format_number(s.material.yield_stress) +
-                                   " Pa): the cap would lie below the initial yield");
-  }
   if (s.temperature_model == TemperatureModel::paper) {
     if (!s.effects.thermal) fail("temperature_model", "paper needs thermal = on");
     if (s.effects.heat_conduction)
@@ -970,13 +957,38 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   for (const auto& [name, m] : s.materials)
     if (m.tangent_modulus >= m.youngs_modulus)
       fail("material." + name + ".tangent_modulus", "must be smaller than youngs_modulus of material " + name);
-  if (materials_known && !s.one_material()) {
-    // Thermal softening reads one set of constants for every point (a per-material version: issue 29).
-    if (s.effects.thermal_softening)
-      fail("thermal_softening", "needs every body of one material (flyer_material " + s.flyer_material +
-                                    ", target_material " + s.target_material +
-                                    (s.has_window() ? ", window_material " + s.window_material : std::string()) +
-                                    "): its melt curve and constants are one material's");
+  if (materials_known && s.effects.thermal_softening && s.strength_model == StrengthModel::bilinear) {
+    // Each body softens and melts with its own material's constants; a starting state the material
+    // cannot have (at or above its softening or melt temperature it has no strength before anything
+    // happens) is refused.
+    std::vector<std::string> checked;
+    for (const Body b : {Body::target, Body::flyer, Body::window}) {
+      const std::string& name = s.material_name(b);
+      if ((b == Body::window && !s.has_window()) || std::count(checked.begin(), checked.end(), name)) continue;
+      checked.push_back(name);
+      const std::string prefix = name == "scene" ? "" : "material." + name + ".";
+      const std::string which = name == "scene" ? std::string() : " (material " + name + ")";
+      const Material& m = s.material_of(b);
+      const double T0 = m.initial_temperature;
+      if (!m.has_softening()) {
+        fail(prefix + "melt_temperature", "thermal_softening = on, but material " + name +
+                                              " has no Steinberg-Guinan constants: give its " + prefix +
+                                              "melt_temperature, softening_temperature, lindemann_a, "
+                                              "pressure_hardening_scale, yield_stress_max and latent_heat");
+        continue;
+      }
+      if (m.softening_temperature <= T0)
+        fail(prefix + "softening_temperature", "must be above initial_temperature (" + format_number(T0) +
+                                                   " K): the material would start with no strength" + which);
+      if (m.melt_temperature <= T0)
+        fail(prefix + "melt_temperature", "must be above initial_temperature (" + format_number(T0) +
+                                              " K): the material would start molten" + which);
+      if (!(m.pressure_hardening_scale > 0.0))
+        fail(prefix + "pressure_hardening_scale", "must be > 0 with thermal_softening = on" + which);
+      if (m.yield_stress_max < m.yield_stress)
+        fail(prefix + "yield_stress_max", "must be at least yield_stress (" + format_number(m.yield_stress) +
+                                              " Pa): the cap would lie below the initial yield" + which);
+    }
   }
   if (s.strength_model == StrengthModel::johnson_cook) {
     if (!s.effects.plasticity) fail("strength_model", "johnson_cook needs plasticity = on");
@@ -1150,7 +1162,10 @@ bool same_constants(const Material& a, const Material& b) {
          a.tillotson_nonlinear_modulus == b.tillotson_nonlinear_modulus && a.tillotson_energy == b.tillotson_energy &&
          a.tillotson_incipient_vaporisation == b.tillotson_incipient_vaporisation &&
          a.tillotson_complete_vaporisation == b.tillotson_complete_vaporisation &&
-         a.tillotson_alpha == b.tillotson_alpha && a.tillotson_beta == b.tillotson_beta;
+         a.tillotson_alpha == b.tillotson_alpha && a.tillotson_beta == b.tillotson_beta &&
+         a.softening_temperature == b.softening_temperature && a.melt_temperature == b.melt_temperature &&
+         a.lindemann_a == b.lindemann_a && a.pressure_hardening_scale == b.pressure_hardening_scale &&
+         a.yield_stress_max == b.yield_stress_max && a.latent_heat == b.latent_heat;
 }
 
 const std::string& Scene::material_name(Body b) const {

@@ -94,7 +94,7 @@ Column<D> field(hid_t g, const char* name, std::vector<hsize_t> shape, const cha
 
 template <int D>
 Columns<D> particle_columns(hid_t g, const Particles<D>& layout, const BodyTemperatures* thermal, int level,
-                            const MeltCurve& melt, const std::array<double, kBodies>& melt_temperature) {
+                            const std::array<MeltCurve, kBodies>& melt, const std::array<double, kBodies>& melt_temperature) {
   const Compression always{level > 0 ? level : 1};  // fields that compress >100x: worth it at any setting
   const Compression chosen{level};
   const hsize_t d = D;
@@ -145,11 +145,17 @@ Columns<D> particle_columns(hid_t g, const Particles<D>& layout, const BodyTempe
   c.push_back(doubles<D>(g, "plastic_strain", {}, "", "effective plastic strain", chosen,
                          [](const Particles<D>& p, std::size_t q, double* o) { *o = p.has_strength() ? p.eps_p[q] : 0.0; }));
   c.push_back(doubles<D>(g, "melted", {}, "",
-                         "1 where T is at or above the melt temperature: the Lindemann T_m(J), or with strength_model = "
-                         "johnson_cook the body's jc_melt_temperature; else 0 (0 with thermal = off)",
+                         "1 where T is at or above the melt temperature: the Lindemann T_m(J) of the body's material, or "
+                         "with strength_model = johnson_cook the body's jc_melt_temperature; else 0 (0 with thermal = "
+                         "off, and for a material without a melt curve)",
                          chosen, [thermal, melt, melt_temperature](const Particles<D>& p, std::size_t q, double* o) {
                            const double fixed = melt_temperature[index_of(p.body[q])];
-                           const double T_m = fixed > 0.0 ? fixed : melt.at(p.material_J(q));
+                           const MeltCurve& curve = melt[index_of(p.body[q])];
+                           if (!(fixed > 0.0) && !(curve.T_m0 > 0.0)) {
+                             *o = 0.0;
+                             return;
+                           }
+                           const double T_m = fixed > 0.0 ? fixed : curve.at(p.material_J(q));
                            *o = thermal && thermal->of_point(p, q) >= T_m ? 1.0 : 0.0;
                          }));
   c.push_back(doubles<D>(g, "damage", {}, "", "0 intact, rising from 0 while it opens in tension, 1 separated (spall = on; 0 without)",

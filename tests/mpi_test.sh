@@ -75,10 +75,11 @@ compare smoothing "$data/tiny_porous.scene" --set volumetric_smoothing=on --set 
 compare smoothing_whole "$data/tiny_porous.scene" --set volumetric_smoothing=on --set flyer_mirror=off
 # Three materials (issue 29): a solid copper flyer, its yield changed by a material key, on the porous
 # aluminium target at rest (the laboratory frame) with a LiF window on its far surface; conduction
-# weights its nodal temperatures by the three materials' heat capacities.
+# weights its nodal temperatures by the three materials' heat capacities, and each softens and melts
+# by its own Steinberg-Guinan constants.
 compare materials "$data/tiny_porous.scene" --set flyer_material=copper --set flyer_porosity=1 \
   --set target_velocity=0 --set "material.copper.yield_stress=200 MPa" --set spall=on "${probes[@]}" \
-  --set "window_height=50 um" --set window_material=lif --set heat_conduction=on
+  --set "window_height=50 um" --set window_material=lif --set heat_conduction=on --set thermal_softening=on
 # The 4-node B-spline over the point domains (three shared rows between ranks), in the laboratory
 # frame, with Johnson-Cook strength, conduction and spall.
 compare domain "$data/tiny_porous.scene" --set shape_function=bspline2_domain --set target_velocity=0 \

@@ -189,8 +189,13 @@ int main() {
     CHECK_THROWS_WITH(parse_scene("material.scene.density = 1\n", "m.scene"), "m.scene:1", "bare keys");
     CHECK_THROWS_WITH(parse_scene("material.copper.density = -1\n", "m.scene"), "m.scene:1", "out of range");
     CHECK_THROWS_WITH(parse_scene("material.copper\n", "m.scene"), "m.scene:1");
-    CHECK_THROWS_WITH(parse_scene("flyer_material = copper\nthermal_softening = on\n", "m.scene"),
-                      "'thermal_softening'", "one material");
+    // Softening takes each body's constants; a material without them is refused, naming its key.
+    CHECK(parse_scene("flyer_material = copper\nthermal_softening = on\n", "m.scene").effects.thermal_softening);
+    CHECK_THROWS_WITH(parse_scene("flyer_material = tantalum\nthermal_softening = on\n", "m.scene"),
+                      "'material.tantalum.melt_temperature'", "no Steinberg-Guinan constants");
+    CHECK_THROWS_WITH(parse_scene("flyer_material = copper\nthermal_softening = on\n"
+                                  "material.copper.initial_temperature = 2000 K\n", "m.scene"),
+                      "'material.copper.melt_temperature'", "start molten", "(material copper)");
     // Conduction takes each body's constants (heat_conduction.hpp).
     CHECK(parse_scene("target_material = pmma\nheat_conduction = on\n", "m.scene").effects.heat_conduction);
     CHECK_THROWS_WITH(parse_scene("flyer_velocity = 0\ntarget_velocity = 0\n", "m.scene"), "'flyer_velocity'",

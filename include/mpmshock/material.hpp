@@ -42,6 +42,17 @@ struct Material {
   // is counted as outside the equation of state's range (eos.hpp) [m/s].
   double fit_particle_velocity = 6000.0;
 
+  // Steinberg-Guinan softening and melting (thermal_softening = on, thermal_softening.hpp). The
+  // defaults are 6061-T6's (Steinberg 1996); melt_temperature = 0 marks a material without them
+  // (material_library.cpp).
+  double softening_temperature = 1923.0;       // [K] where linear softening would reach zero, 300 K + 1/B
+  double melt_temperature = 1220.0;            // [K] T_m0, the melt temperature at J = 1
+  double lindemann_a = 1.5;                    // volume exponent a of the Lindemann melt curve
+  double pressure_hardening_scale = 15.337e9;  // [Pa] 1/A of Steinberg-Guinan's pressure term
+  double yield_stress_max = 0.68e9;            // [Pa] Steinberg-Guinan's Y_max
+  double latent_heat = 397e3;                  // [J/kg] heat of fusion, taken at T_m
+  bool has_softening() const { return melt_temperature > 0.0; }
+
   // Tillotson's constants (equation_of_state = tillotson, tillotson.hpp). The defaults are
   // aluminium's (Tillotson 1962, as tabulated in Spheral's material library); A = 0 marks a material
   // without them (material_library.cpp).
@@ -82,6 +93,10 @@ struct Material {
 // library's tantalum, LiF and PMMA and a scene's new material are until given them; strength_model =
 // johnson_cook refuses it.
 Material without_johnson_cook(Material m);
+
+// The material without Steinberg-Guinan softening constants (melt_temperature = 0 and the rest 0):
+// the library's tantalum and PMMA; thermal_softening = on refuses it.
+Material without_softening(Material m);
 
 // The material without Tillotson constants (tillotson_bulk_modulus = 0): the library's copper,
 // tantalum, LiF and PMMA; equation_of_state = tillotson refuses it.

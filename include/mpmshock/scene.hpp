@@ -117,12 +117,6 @@ struct Scene {
   TemperatureModel temperature_model = TemperatureModel::energy;
   StrengthModel strength_model = StrengthModel::bilinear;
   bool paper_temperature = false;  // also report the paper model's temperature beside the energy model's
-  double softening_temperature = 1923.0;  // [K] where linear softening would reach zero
-  double melt_temperature = 1220.0;       // [K] T_m0, the melt temperature at J = 1
-  double lindemann_a = 1.5;               // volume exponent of the Lindemann melt curve
-  double pressure_hardening_scale = 15.337e9;  // [Pa] 1/A of Steinberg-Guinan's pressure term
-  double yield_stress_max = 0.68e9;            // [Pa] Steinberg-Guinan's Y_max
-  double latent_heat = 397e3;                  // [J/kg] heat of fusion, taken at T_m
   double flip_fraction = 1.0;  // share of FLIP in the point velocity update; the rest is PIC
   bool skip_unreached = true;  // advance material nothing has reached in closed form (unreached.hpp)
   bool volumetric_smoothing = false;  // tr L_p from the grid's field of it (volumetric_smoothing.hpp)

@@ -38,7 +38,7 @@ struct SnapshotOptions {
   int compression = 0;  // gzip level for every field; 0: only the fields that compress >100x
   const Grid<D>* grid = nullptr;  // write /grid when given
   RowRange grid_rows;             // the grid's rows that hold this step's values
-  MeltCurve melt;                 // for /particles/melted
+  std::array<MeltCurve, kBodies> melt{};  // each body's, for /particles/melted (T_m0 = 0: none)
   // Johnson-Cook strength: each body's constant melt temperature (jc_melt_temperature), which
   // /particles/melted then uses; 0: the melt curve.
   std::array<double, kBodies> melt_temperature{};

@@ -156,9 +156,9 @@ class BodyTemperatures {
   template <int D>
   double paper_of_point(const Particles<D>& p, std::size_t q) const { return of_body(p.body[q]).paper_of_point(p, q); }
 
-  // Melting, of one material (scene.cpp refuses thermal_softening with two).
-  void set_melting(const MeltCurve& melt, double latent_heat) {
-    for (HugoniotTemperature& t : by_body_) t.set_melting(melt, latent_heat);
+  // Melting, of a body's material.
+  void set_melting(Body b, const MeltCurve& melt, double latent_heat) {
+    by_body_[static_cast<std::size_t>(b)].set_melting(melt, latent_heat);
   }
 
  private:

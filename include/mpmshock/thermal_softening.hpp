@@ -7,10 +7,11 @@
 // with eta = rho / rho0 = 1/J, T_r = 300 K, B = 1 / (T_s - T_r) (T_s: where the thermal term alone
 // would reach zero) and A = 1 / P_s (pressure_hardening_scale); f is never below 0. The
 // work-hardened yield stress is capped at Y_max (yield_stress_max) before f scales it, as in
-// Steinberg-Guinan. The parameters are those of aluminium 6061-T6 in Steinberg's table (LLNL
-// UCRL-MA-106439, 1996): A = 6.52 /Mbar (P_s = 15.34 GPa), B = 6.16e-4 /K (T_s = 1923 K),
-// Y_max = 0.68 GPa, T_m0 = 1220 K, a = 1.5 (gamma0 is the scene's gruneisen_gamma, 1.96 against
-// their 1.97); the initial yield and the hardening stay the paper's. Melting takes the latent heat
+// Steinberg-Guinan. The parameters are each body's material's (material.hpp); the defaults, the
+// library's aluminium, are 6061-T6's in Steinberg's table (LLNL UCRL-MA-106439, 1996): A = 6.52 /Mbar
+// (P_s = 15.34 GPa), B = 6.16e-4 /K (T_s = 1923 K), Y_max = 0.68 GPa, T_m0 = 1220 K, a = 1.5 (gamma0
+// is the material's gruneisen_gamma, 1.96 against their 1.97); the initial yield and the hardening
+// stay the paper's. Copper and LiF take theirs from the same table (material_library.cpp). Melting takes the latent heat
 // L (latent_heat) at T_m before the temperature rises further (temperature.hpp). The pressure is
 // the point's pressure at the start of the step (the update is explicit).
 #pragma once
