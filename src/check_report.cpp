@@ -107,7 +107,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   const auto steps = static_cast<long long>(std::ceil(s.end_time / dt0));
   out << "time step: " << dt0 * 1e9 << " ns at start, ";
   if (dt0 < mechanical)
-    out << "set by heat conduction (0.2 h^2 / diffusivity, diffusivity " << model.max_diffusivity()
+    out << "set by heat conduction (" << model.diffusion_number << " h^2 / diffusivity, diffusivity " << model.max_diffusivity()
         << " m2/s; the sound limit, cfl " << s.cfl << " at " << signal << " m/s, allows " << mechanical * 1e9
         << " ns)";
   else

@@ -116,7 +116,8 @@ const std::vector<LibraryMaterial>& material_library() {
        "lithium fluoride window, Marsh (1980) LASL Shock Hugoniot Data (c0, s), gamma0 1.69; polycrystal "
        "E and nu; yield 0.2 GPa (approximate, no hardening); c_v 1560 J/(kg K), k 11.3 W/(m K); cohesive "
        "energy: the lattice energy 1036 kJ/mol (CRC); no Johnson-Cook constants; Steinberg-Guinan softening "
-       "and melt curve of single-crystal LiF, Steinberg (1996), heat of fusion 27.09 kJ/mol (CRC)"},
+       "and melt curve of single-crystal LiF, Steinberg (1996) (T_m0 1480 K is its fit; LiF melts at 1121 K), heat "
+       "of fusion 27.09 kJ/mol (CRC)"},
       // PMMA: Marsh (1980), c0 2598, s 1.516; gamma0 0.97.
       {"pmma", without_softening(without_johnson_cook(
                    make(1186.0, 2598.0, 1.516, 0.97, 1466.0, 3.3e9, 0.35, 100e6, 0.0, 0.19, 20e6, 3000.0))),

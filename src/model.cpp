@@ -105,6 +105,7 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool
   skip_unreached = s.skip_unreached;
   volumetric_smoothing = s.volumetric_smoothing;
   if (s.effects.thermal && s.effects.artificial_viscosity) heat_flux_beta = s.av_heat_flux;
+  diffusion_number = s.dimension == 3 ? 0.15 : 0.2;
   if (s.effects.heat_conduction)
     for (std::size_t b = 0; b < kBodies; ++b) {
       conductivity[b] = m[b]->thermal_conductivity;

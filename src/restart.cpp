@@ -18,6 +18,43 @@
 #include "mpmshock/time_loop.hpp"
 
 namespace mpmshock {
+
+static bool scene_sets(const std::string& scene_text, const std::string& key) {
+  return scene_text.rfind(key + " =", 0) == 0 || scene_text.find("\n" + key + " =") != std::string::npos;
+}
+
+// The value a scene's text gives a key on a line of its own ("" if none).
+static std::string scene_value(const std::string& scene_text, const std::string& key) {
+  std::istringstream in(scene_text);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(key + " = ", 0) == 0) return line.substr(key.size() + 3);
+  return "";
+}
+
+// A snapshot written before the symmetry key existed ran the whole domain: it goes on so (its
+// scene would otherwise read symmetry = auto and drop its flyer). One written before
+// spall_criterion existed judged spall point by point: it goes on so.
+std::vector<std::string> with_old_defaults(const std::string& scene_text, std::vector<std::string> overrides) {
+  if (!scene_sets(scene_text, "symmetry")) overrides.push_back("symmetry=off");
+  if (!scene_sets(scene_text, "spall_criterion")) overrides.push_back("spall_criterion=point");
+  // Written before the time step had a volume limit: go on without one (1e9 never binds).
+  if (!scene_sets(scene_text, "max_volume_change")) overrides.push_back("max_volume_change=1e9");
+  // Written before the Steinberg-Guinan constants were each material's (2026-12-05): the bare keys
+  // were every body's, so a named material a body used softened by them; it goes on so.
+  std::vector<std::string> done;  // the named materials given them
+  if (scene_value(scene_text, "thermal_softening") == "on" && scene_text.find(".melt_temperature = ") == std::string::npos)
+    for (const char* body : {"flyer_material", "target_material", "window_material"}) {
+      const std::string name = scene_value(scene_text, body);
+      if (name.empty() || name == "scene" || std::count(done.begin(), done.end(), name)) continue;
+      done.push_back(name);
+      for (const char* key : {"softening_temperature", "melt_temperature", "lindemann_a", "pressure_hardening_scale",
+                              "yield_stress_max", "latent_heat"})
+        if (const std::string v = scene_value(scene_text, key); !v.empty())
+          overrides.push_back("material." + name + "." + key + "=" + v);
+    }
+  return overrides;
+}
+
 namespace {
 
 // Keys a restart may change: outputs and numerics. The bodies, grid and material are the state.
@@ -40,20 +77,6 @@ void check_csv_header(const fs::path& path, const std::string& expected, const s
                    " has the columns of another mpmshock version; continue in a new directory (--set output_dir=DIR)");
 }
 
-bool scene_sets(const std::string& scene_text, const std::string& key) {
-  return scene_text.rfind(key + " =", 0) == 0 || scene_text.find("\n" + key + " =") != std::string::npos;
-}
-
-// A snapshot written before the symmetry key existed ran the whole domain: it goes on so (its
-// scene would otherwise read symmetry = auto and drop its flyer). One written before
-// spall_criterion existed judged spall point by point: it goes on so.
-std::vector<std::string> with_old_defaults(const std::string& scene_text, std::vector<std::string> overrides) {
-  if (!scene_sets(scene_text, "symmetry")) overrides.push_back("symmetry=off");
-  if (!scene_sets(scene_text, "spall_criterion")) overrides.push_back("spall_criterion=point");
-  // Written before the time step had a volume limit: go on without one (1e9 never binds).
-  if (!scene_sets(scene_text, "max_volume_change")) overrides.push_back("max_volume_change=1e9");
-  return overrides;
-}
 
 void check_restart_overrides(const std::string& snapshot, const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) {

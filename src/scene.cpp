@@ -527,7 +527,7 @@ const std::vector<Key>& keys() {
         "mie_gruneisen",
         "mie_gruneisen: referenced to the Us-up Hugoniot (sound_speed, hugoniot_slope, gruneisen_gamma); "
         "tillotson: Tillotson's compressed, expanded and vapour branches with the tillotson_* keys (built-in "
-        "constants: aluminium); every body of a scene takes the same one",
+        "constants: aluminium); each body takes its own material's",
         FIELD(material.equation_of_state)));
     k.push_back(quantity("tillotson_a", D::none, closed(0.0, 10.0), "0.5",
                          "Tillotson a (equation_of_state = tillotson; aluminium, Tillotson 1962)", FIELD(material.tillotson_a)));

@@ -61,8 +61,10 @@ template <class Eos>
 void HugoniotTemperature::tabulate_isentrope(const Eos& eos, int intervals) {
   constexpr double kTop = 100.0;  // the largest J tabulated
   constexpr int kExpandedPerCompressed = 4;  // ln J spacing 1.1e-3 for 4096 intervals
-  const double J_limit = eos.limiting_compression();
-  J_min_ = J_limit + 0.02 * (1.0 - J_limit);
+  // Down to the limiting compression itself (an isentrope has no pole there): every state the
+  // point update admits has a temperature (a state between the limit and the table would read an
+  // infinite one, which the heat flux would spread as NaN).
+  J_min_ = eos.limiting_compression();
   dJ_ = (1.0 - J_min_) / intervals;
   const int expanded = kExpandedPerCompressed * intervals;
   dlnJ_ = std::log(kTop) / expanded;

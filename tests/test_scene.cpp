@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "check.hpp"
+#include "mpmshock/run.hpp"
 #include "mpmshock/scene.hpp"
 
 using namespace mpmshock;
@@ -203,6 +204,17 @@ int main() {
     CHECK_THROWS_WITH(parse_scene("flyer_material = lif\nsymmetry = on\n", "m.scene"), "'symmetry'",
                       "material differs");
     CHECK(find_library_material("tantalum") && !find_library_material("steel"));
+    // A restart of a run written before the Steinberg-Guinan constants were each material's: its
+    // bare keys were every body's, so its named materials go on with them (restart.cpp).
+    const std::string old_run = "flyer_material = copper\ntarget_material = copper\nthermal_softening = on\n"
+                                "melt_temperature = 1000 K\nlatent_heat = 300000 J/kg\n";
+    const Scene migrated = parse_scene(old_run, "old.scene", with_old_defaults(old_run, {}));
+    CHECK(migrated.material_of(Body::flyer).melt_temperature == 1000.0);
+    CHECK(migrated.material_of(Body::target).latent_heat == 300000.0);
+    CHECK(migrated.material_of(Body::target).pressure_hardening_scale == find_library_material("copper")->constants.pressure_hardening_scale);
+    // One written since keeps its materials' own.
+    const std::string new_run = old_run + "material.copper.melt_temperature = 1790 K\n";
+    CHECK(parse_scene(new_run, "new.scene", with_old_defaults(new_run, {})).material_of(Body::flyer).melt_temperature == 1790.0);
   }
   return check::result();
 }

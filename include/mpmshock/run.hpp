@@ -65,6 +65,10 @@ RunResult run_scene(const Scene& scene, const RunOptions& options);
 RunResult restart_run(const std::string& snapshot, const std::vector<std::string>& overrides,
                       const RunOptions& options);
 
+// The overrides a snapshot's scene text needs to run as the mpmshock that wrote it did (keys it
+// predates), after `overrides`; restart_run applies them.
+std::vector<std::string> with_old_defaults(const std::string& scene_text, std::vector<std::string> overrides);
+
 // --restart SNAPSHOT --check: reads and validates the snapshot (checksum, every value, the bodies
 // against the scene) without running; SceneError says what is wrong.
 std::string check_restart(const std::string& snapshot, const std::vector<std::string>& overrides);

@@ -5,7 +5,7 @@
 // With Tillotson's equation of state (equation_of_state = tillotson), which has no Hugoniot of
 // closed form, the reference curve is instead the isentrope through the reference state (J = 1,
 // E = 0, T0): dE_s/dJ = -P(J, E_s) / rho0, dT_s/dJ = -T_s (dP/dE)_V / rho0, tabulated at start-up
-// (uniform in J from near the EOS's limiting compression to 1, uniform in ln J from 1 to 100; beyond
+// (uniform in J from the EOS's limiting compression to 1, uniform in ln J from 1 to 100; beyond
 // 100 the values at 100), and T = T_s(V) + (E - E_s(V)) / c_v with the same constant c_v.
 //   (Below, T_H and E_H stand for whichever reference curve the material's equation of state has.)
 //   paper:            T = T_H(V) + W_p / c_v, W_p the plastic work turned to heat. The paper's text

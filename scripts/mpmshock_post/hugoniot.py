@@ -52,6 +52,10 @@ class Material:
         or the material.NAME.KEY values of the material it names."""
         name = scene.get(f"{body}_material", "scene")
         prefix = "" if name == "scene" else f"material.{name}."
+        law = scene.get(prefix + "equation_of_state", "mie_gruneisen")
+        if law != "mie_gruneisen":
+            raise PostError(f"the {body}'s equation of state is {law}: these closed forms are Mie-Grüneisen's "
+                            "(the simulator's --check prints the impact state of any)")
         try:
             return cls(**{field: float(scene[prefix + field]) for field in cls.__dataclass_fields__})
         except KeyError as e:
