@@ -1,5 +1,4 @@
 // The --check report: what a scene builds, what it will cost, before anything runs.
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -132,14 +131,11 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
     // Each body's material's melt curve (the target's first; a body of the same material adds none).
     std::ostringstream melt;
     melt << "melting (";
-    std::vector<std::string> named;
-    for (const Body b : {Body::target, Body::flyer, Body::window}) {
-      const std::string& name = s.material_name(b);
-      if ((b == Body::window && !s.has_window()) || std::count(named.begin(), named.end(), name)) continue;
-      const Material& m = s.material_of(b);
-      melt << (named.empty() ? "" : "; ") << (name == "scene" ? "" : name + ": ") << "T_m0 " << m.melt_temperature
-           << " K, Lindemann a " << m.lindemann_a << ", latent heat " << m.latent_heat << " J/kg";
-      named.push_back(name);
+    const std::vector<std::string> names = s.materials_in_use();
+    for (const std::string& name : names) {
+      const Material& m = s.material_by_name(name);
+      melt << (name == names.front() ? "" : "; ") << (name == "scene" ? "" : name + ": ") << "T_m0 "
+           << m.melt_temperature << " K, Lindemann a " << m.lindemann_a << ", latent heat " << m.latent_heat << " J/kg";
     }
     melt << ")";
     on.push_back(melt.str());
@@ -147,8 +143,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   if (s.material_of(Body::flyer).bound_expansion || s.material_of(Body::target).bound_expansion ||
       (s.has_window() && s.material_of(Body::window).bound_expansion))
     on.push_back("bounded expansion (Rose binding curve)");
-  for (const Body b : {Body::target, Body::flyer, Body::window})
-    if ((b != Body::window || s.has_window()) && s.material_of(b).equation_of_state == EquationOfStateModel::tillotson) {
+  for (const std::string& name : s.materials_in_use())
+    if (s.material_by_name(name).equation_of_state == EquationOfStateModel::tillotson) {
       on.push_back("Tillotson equation of state (compressed, expanded and vapour branches)");
       break;
     }

@@ -876,6 +876,9 @@ void set_material_key(Scene& scene, const Entry& e) {
   scene.materials[name] = holder.material;
 }
 
+// How a scene names a key of the material NAME: bare for the scene's own, else material.NAME.KEY.
+std::string material_key_prefix(const std::string& name) { return name == "scene" ? "" : "material." + name + "."; }
+
 // Every constant of a material as the material.NAME.KEY lines a scene writes.
 std::string material_lines(const std::string& name, const Material& m) {
   Scene holder;  // the material keys read Scene::material
@@ -961,14 +964,10 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     // Each body softens and melts with its own material's constants; a starting state the material
     // cannot have (at or above its softening or melt temperature it has no strength before anything
     // happens) is refused.
-    std::vector<std::string> checked;
-    for (const Body b : {Body::target, Body::flyer, Body::window}) {
-      const std::string& name = s.material_name(b);
-      if ((b == Body::window && !s.has_window()) || std::count(checked.begin(), checked.end(), name)) continue;
-      checked.push_back(name);
-      const std::string prefix = name == "scene" ? "" : "material." + name + ".";
+    for (const std::string& name : s.materials_in_use()) {
+      const std::string prefix = material_key_prefix(name);
       const std::string which = name == "scene" ? std::string() : " (material " + name + ")";
-      const Material& m = s.material_of(b);
+      const Material& m = s.material_by_name(name);
       const double T0 = m.initial_temperature;
       if (!m.has_softening()) {
         fail(prefix + "melt_temperature", "thermal_softening = on, but material " + name +
@@ -1005,7 +1004,7 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     for (const Body b : {Body::flyer, Body::target, Body::window}) {
       if (!materials_known || (b == Body::window && !s.has_window())) continue;
       const std::string& name = s.material_name(b);
-      const std::string prefix = name == "scene" ? "" : "material." + name + ".";
+      const std::string prefix = material_key_prefix(name);
       const Material& m = s.material_of(b);
       if (!m.has_johnson_cook())
         fail(prefix + "jc_yield_stress", "strength_model = johnson_cook, but material " + name +
@@ -1026,13 +1025,9 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
       return name == "scene" ? std::string("the scene's own material (the bare keys)") : "material " + name;
     };
     bool any_tillotson = false;
-    std::vector<std::string> checked;
-    for (const Body b : {Body::target, Body::flyer, Body::window}) {
-      const std::string& name = s.material_name(b);
-      if ((b == Body::window && !s.has_window()) || std::count(checked.begin(), checked.end(), name)) continue;
-      checked.push_back(name);
-      const std::string prefix = name == "scene" ? "" : "material." + name + ".";
-      const Material& m = s.material_of(b);
+    for (const std::string& name : s.materials_in_use()) {
+      const std::string prefix = material_key_prefix(name);
+      const Material& m = s.material_by_name(name);
       if (m.equation_of_state != EquationOfStateModel::tillotson) continue;
       any_tillotson = true;
       if (!m.has_tillotson())
@@ -1172,8 +1167,19 @@ const std::string& Scene::material_name(Body b) const {
   return b == Body::flyer ? flyer_material : b == Body::target ? target_material : window_material;
 }
 
-const Material& Scene::material_of(Body b) const {
-  const std::string& name = material_name(b);
+std::vector<std::string> Scene::materials_in_use() const {
+  std::vector<std::string> names;
+  for (const Body b : {Body::target, Body::flyer, Body::window}) {
+    if (b == Body::window && !has_window()) continue;
+    const std::string& name = material_name(b);
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  return names;
+}
+
+const Material& Scene::material_of(Body b) const { return material_by_name(material_name(b)); }
+
+const Material& Scene::material_by_name(const std::string& name) const {
   return name == "scene" ? material : materials.at(name);
 }
 
@@ -1338,13 +1344,8 @@ std::string resolved_scene(const Scene& scene) {
   }
   // The named materials the bodies use, every constant: a run reads back as it ran, whatever the
   // library holds later.
-  std::vector<std::string> named;
-  for (const Body b : {Body::target, Body::flyer, Body::window}) {
-    const std::string& name = scene.material_name(b);
-    if (b == Body::window && !scene.has_window()) continue;
-    if (name != "scene" && std::find(named.begin(), named.end(), name) == named.end()) named.push_back(name);
-  }
-  for (const std::string& name : named) out += material_lines(name, scene.materials.at(name));
+  for (const std::string& name : scene.materials_in_use())
+    if (name != "scene") out += material_lines(name, scene.materials.at(name));
   for (const RegionSpec& r : scene.regions) {
     out += "region." + r.name + " = ";
     switch (r.kind) {

@@ -304,11 +304,7 @@ void softening_per_material() {
       const Material& other = b == Body::flyer ? al : cu;
       const HugoniotTemperature& thermal = sim.model().thermal->of_body(b);
       auto factor = [&](const Material& m, std::size_t q) {
-        ThermalSoftening soft;
-        soft.melt = melt_curve_of(m);
-        soft.T_s = m.softening_temperature;
-        soft.pressure_hardening = 1.0 / m.pressure_hardening_scale;
-        return soft.factor(p.P[q], thermal.temperature(p.material_J(q), p.thermal_energy(q)), p.material_J(q));
+        return softening_of(m).factor(p.P[q], thermal.temperature(p.material_J(q), p.thermal_energy(q)), p.material_J(q));
       };
       Layer& l = layers[index_of(b)];
       for (std::size_t q = 0; q < p.size(); ++q) {

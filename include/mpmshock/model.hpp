@@ -45,8 +45,9 @@ StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress = 
 EquationOfStateLaw equation_of_state_of(const Material& mat);
 // Whether either body's material hardens kinematically (hardening_beta < 1): then both store a back stress.
 bool kinematic_hardening(const Scene& s);
-// The Lindemann melt curve of a material (thermal_softening.hpp).
+// The Lindemann melt curve of a material, and its Steinberg-Guinan softening (thermal_softening.hpp).
 MeltCurve melt_curve_of(const Material& mat);
+ThermalSoftening softening_of(const Material& mat);
 inline bool has_stress(const StrengthLaw& law) { return !std::holds_alternative<NoStrength>(law); }
 inline bool has_back_stress(const StrengthLaw& law) {
   return std::holds_alternative<VonMises<true>>(law) || std::holds_alternative<VonMises<true, true>>(law);

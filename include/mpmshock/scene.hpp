@@ -153,7 +153,12 @@ struct Scene {
 
   // The material of a body: the bare keys' ("scene") or a named one.
   const Material& material_of(Body b) const;
+  // The material of that name: "scene" (the bare keys') or a named one the scene holds.
+  const Material& material_by_name(const std::string& name) const;
   const std::string& material_name(Body b) const;
+  // The names of the materials the bodies use, each once: the target's, the flyer's, the window's
+  // (with a window); "scene" for the bare keys'.
+  std::vector<std::string> materials_in_use() const;
   bool has_window() const { return window_height > 0.0; }
   // No body has voids (a window is always solid).
   bool every_body_solid() const { return porosity == 1.0 && flyer_porosity == 1.0; }
