@@ -30,9 +30,9 @@ HugoniotTemperature::HugoniotTemperature(const Material& mat, TemperatureModel m
     tabulate_isentrope(Tillotson(mat), intervals);
     return;
   }
-  const double J_limit = eos_.limiting_compression();
-  // Stop short of the pole at J = 1 - 1/s where T_H diverges; no physical state gets close.
-  J_min_ = J_limit + 0.02 * (1.0 - J_limit);
+  // Down to the smallest J the equation of state admits, short of the pole where T_H diverges
+  // (eos.hpp): every state the point update admits has a finite temperature.
+  J_min_ = eos_.limiting_compression();
   dJ_ = (1.0 - J_min_) / intervals;
   const WalshChristian rhs{mat.sound_speed, mat.hugoniot_slope, mat.gruneisen_gamma, mat.specific_heat};
 

@@ -86,7 +86,10 @@ int main() {
       const double c2_numeric = -V * V * (P_plus - P_minus) / (2 * dV);
       CHECK_REL(e->sound_speed_squared(J, P), c2_numeric, 1e-5);
     }
-  CHECK_REL(eos.limiting_compression(), 1 - 1 / s, 1e-15);
+  CHECK_REL(eos.pole(), 1 - 1 / s, 1e-15);
+  // The admitted states stop 2 % of the way from the pole (P_H about 1.2e5 GPa for aluminium).
+  CHECK_REL(eos.limiting_compression(), eos.pole() + 0.02 * (1 - eos.pole()), 1e-15);
+  CHECK(eos.hugoniot_pressure(eos.limiting_compression()) > 1e14);
   // The constitutive update's combined evaluation gives the same state.
   for (double J : {0.7, 0.9, 1.0, 1.05}) {
     const MieGruneisen::State st = eos.state(J, 1.5e5);

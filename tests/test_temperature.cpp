@@ -47,6 +47,11 @@ int main() {
   // The paper model: T_H(J) plus the plastic heat over c_v, whatever E holds.
   CHECK_NEAR(temp.paper_temperature(0.9, 0.0), temp.hugoniot_temperature(0.9), 1e-12);
   CHECK_NEAR(temp.paper_temperature(0.9, 88000.0) - temp.hugoniot_temperature(0.9), 100.0, 1e-9);
+  // Every state the equation of state admits has a finite temperature: the table reaches its
+  // limiting compression (a state between them read an infinite one, which the heat flux spread as NaN).
+  CHECK_NEAR(temp.min_tabulated_J(), eos.limiting_compression(), 1e-15);
+  for (double J : {eos.limiting_compression() * (1 + 1e-12), eos.limiting_compression() + 1e-4})
+    CHECK(std::isfinite(temp.temperature(J, eos.hugoniot_energy(J))));
   // T_H grows monotonically with compression down to the table's end.
   double last = 0;
   for (double J = 1.0; J > temp.min_tabulated_J(); J -= 0.01) {

@@ -127,6 +127,18 @@ int main() {
     CHECK_REL(rg.norm2(), g.norm2(), 1e-14);
   }
 
+  // A point compressed between the Us-up pole and the equation of state's limit is refused (a bad
+  // state, -1), not given an infinite temperature: J = 0.26 lies between 0.254 and 0.269.
+  {
+    Material m;
+    const MieGruneisen eos(m);
+    PointState<2> st{{}, 0, Mat<2>{{{1, 0}, {0, 0.26}}}, 0, 0, 0, {}, {}, 0};
+    CHECK(eos.pole() < 0.26 && 0.26 < eos.limiting_compression());
+    CHECK(update_point<2>(st, eos, NoStrength{}, NoViscosity{}, 10e-6, 1e-12) == -1.0);
+    st.F = Mat<2>{{{1, 0}, {0, 0.28}}};
+    CHECK(update_point<2>(st, eos, NoStrength{}, NoViscosity{}, 10e-6, 1e-12) > 0.0);
+  }
+
   // Uniaxial strain (the shock's loading path): elastic until sigma_xx - sigma_yy reaches sigma_Y0,
   // then it stays on the (hardening) surface. The deviator at first yield is s_yy = -(2/3) sigma_Y.
   {

@@ -9,8 +9,10 @@
 // Compression (J < 1): P_r = P_H = rho0 c0^2 eta / (1 - s eta)^2, E_r = E_H = P_H eta / (2 rho0).
 // The linear Us-up line is a fit to data up to some particle velocity (fit_particle_velocity): a
 // point compressed past that Hugoniot state, J < fit_limit(), is outside what the fit knows
-// (the runs count such points: summary.json "beyond_eos_fit"), and at the pole eta = 1/s the
-// state is refused (a bad state).
+// (the runs count such points: summary.json "beyond_eos_fit"). Past limiting_compression(), 2 % of
+// the way from the pole eta = 1/s toward J = 1 (for aluminium J = 0.269, P_H = 1.2e5 GPa), the
+// state is refused (a bad state): the temperature is tabulated down to there, not to the pole
+// where it diverges, so every admitted state has a finite temperature.
 //
 // Expansion (J > 1): the universal binding-energy relation of Rose, Smith, Guinea and Ferrante
 // (1984) on the Wigner-Seitz radius r = r0 J^(1/3), a = (r - r0)/l:
@@ -41,8 +43,11 @@ class MieGruneisen {
 
   double rho0() const { return rho0_; }
 
-  // Smallest J the Us-up Hugoniot reaches: P_H diverges at eta = 1/s.
-  double limiting_compression() const { return 1.0 - 1.0 / s_; }
+  // The Us-up Hugoniot's pole, J = 1 - 1/s, where P_H and T_H diverge.
+  double pole() const { return 1.0 - 1.0 / s_; }
+  // The smallest J admitted: kPoleMargin of the way from the pole toward J = 1.
+  static constexpr double kPoleMargin = 0.02;
+  double limiting_compression() const { return pole() + kPoleMargin * (1.0 - pole()); }
   // J of the Hugoniot state at the fit's largest particle velocity u: 1 - u / (c0 + s u).
   double fit_limit() const { return J_fit_; }
 
