@@ -117,10 +117,31 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   if (const std::string w = probes_size_warning(s, dt0); !w.empty()) out << "warning: " << w << "\n";
   // Every effect the run simulates, and none that it does not.
   std::vector<std::string> on;
-  if (s.effects.plasticity)
-    on.push_back(s.strength_model == StrengthModel::johnson_cook
-                     ? "plasticity (Johnson-Cook flow stress: strain, rate and temperature; molten at jc_melt_temperature)"
-                     : s.effects.thermal_softening ? "plasticity (with Steinberg-Guinan softening)" : "plasticity");
+  if (s.effects.plasticity) {
+    // Each body's law is its material's; where they differ, each material's is named.
+    auto law_of = [&](const Material& m) -> std::string {
+      if (m.strength_model == StrengthModel::johnson_cook)
+        return "Johnson-Cook flow stress: strain, rate and temperature; molten at jc_melt_temperature";
+      return s.effects.thermal_softening ? "with Steinberg-Guinan softening" : "";
+    };
+    const std::vector<std::string> names = s.materials_in_use();
+    bool one_law = true;
+    for (const std::string& name : names)
+      one_law = one_law && s.material_by_name(name).strength_model == s.material_by_name(names.front()).strength_model;
+    if (one_law) {
+      const std::string law = law_of(s.material_by_name(names.front()));
+      on.push_back(law.empty() ? "plasticity" : "plasticity (" + law + ")");
+    } else {
+      std::string each;
+      for (const std::string& name : names) {
+        const Material& m = s.material_by_name(name);
+        const std::string law = law_of(m);
+        each += (each.empty() ? "" : "; ") + name + ": " +
+                (m.strength_model == StrengthModel::johnson_cook ? law : "bilinear" + (law.empty() ? "" : ", " + law));
+      }
+      on.push_back("plasticity (" + each + ")");
+    }
+  }
   if (s.effects.thermal) {
     std::string thermal = s.temperature_model == TemperatureModel::paper ? "thermal (the paper's temperature model"
                                                                          : "thermal (energy temperature model";
@@ -134,8 +155,12 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
     const std::vector<std::string> names = s.materials_in_use();
     for (const std::string& name : names) {
       const Material& m = s.material_by_name(name);
-      melt << (name == names.front() ? "" : "; ") << (name == "scene" ? "" : name + ": ") << "T_m0 "
-           << m.melt_temperature << " K, Lindemann a " << m.lindemann_a << ", latent heat " << m.latent_heat << " J/kg";
+      melt << (name == names.front() ? "" : "; ") << (name == "scene" ? "" : name + ": ");
+      if (m.strength_model == StrengthModel::johnson_cook)  // its own law's melt, without latent heat
+        melt << "Johnson-Cook's T_m " << m.jc_melt_temperature << " K";
+      else
+        melt << "T_m0 " << m.melt_temperature << " K, Lindemann a " << m.lindemann_a << ", latent heat " << m.latent_heat
+             << " J/kg";
     }
     melt << ")";
     on.push_back(melt.str());

@@ -1,5 +1,8 @@
 #include "mpmshock/model.hpp"
 
+#include <stdexcept>
+#include <type_traits>
+
 namespace mpmshock {
 
 namespace {
@@ -33,7 +36,7 @@ ThermalSoftening softening_of(const Material& mat) {
 
 StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
   if (!s.effects.plasticity) return NoStrength{};
-  if (s.strength_model == StrengthModel::johnson_cook) return JohnsonCook(mat);  // isotropic, its own softening (scene.cpp)
+  if (mat.strength_model == StrengthModel::johnson_cook) return JohnsonCook(mat);  // isotropic, its own softening (scene.cpp)
   const bool isotropic = mat.hardening_beta == 1.0 && !back_stress;
   if (s.effects.thermal_softening) {
     if (isotropic) return VonMises<false, true>(mat, softening_of(mat));
@@ -80,13 +83,38 @@ bool kinematic_hardening(const Scene& s) {
   return std::any_of(m.begin(), m.end(), [](const Material* b) { return b->hardening_beta != 1.0; });
 }
 
-Model::Model(const Scene& s) : Model(s, body_materials(s), kinematic_hardening(s)) {}
+std::array<StrengthLaw, kBodies> strength_laws(const Scene& s) {
+  const auto m = body_materials(s);
+  const bool back_stress = kinematic_hardening(s);
+  std::array<StrengthLaw, kBodies> laws{strength_of(s, *m[0], back_stress), strength_of(s, *m[1], back_stress),
+                                        strength_of(s, *m[2], back_stress)};
+  if (laws[0].index() == laws[1].index() && laws[0].index() == laws[2].index()) return laws;
+  // Bodies of different laws (plasticity is the scene's: each body has one): each wrapped.
+  for (StrengthLaw& law : laws)
+    law = std::visit(
+        [](const auto& l) -> StrengthLaw {
+          if constexpr (std::is_same_v<std::decay_t<decltype(l)>, NoStrength> ||
+                        std::is_same_v<std::decay_t<decltype(l)>, MixedStrength>)
+            throw std::logic_error("strength_laws: a body without a law of its own among bodies of different laws");
+          else
+            return MixedStrength(StrengthWithStress(l));
+        },
+        law);
+  return laws;
+}
 
-Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool back_stress)
+const JohnsonCook* johnson_cook_of(const StrengthLaw& law) {
+  if (const auto* jc = std::get_if<JohnsonCook>(&law)) return jc;
+  if (const auto* mixed = std::get_if<MixedStrength>(&law)) return std::get_if<JohnsonCook>(&mixed->law);
+  return nullptr;
+}
+
+Model::Model(const Scene& s) : Model(s, body_materials(s)) {}
+
+Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m)
     : shape(shape_of(s)),
       eos(equations_of_state(m)),
-      strength{strength_of(s, *m[0], back_stress), strength_of(s, *m[1], back_stress),
-               strength_of(s, *m[2], back_stress)},
+      strength(strength_laws(s)),
       viscosity(viscosity_of(s)),
       failure(s.effects.spall ? FailureLaw(Spall{s.spall_strength, s.spall_void_fraction,
                                                          s.spall_criterion == SpallCriterion::neighbourhood, s.spall_point_ceiling}) : FailureLaw(NoFailure{})),
@@ -98,9 +126,11 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m, bool
                           std::max({reference_sound_speed(Body::flyer), reference_sound_speed(Body::target),
                                     reference_sound_speed(Body::window)}))) {
   if (s.effects.thermal) thermal.emplace(*m[0], *m[1], *m[2], s.temperature_model, s.paper_temperature);
+  // Steinberg-Guinan's melting is the bilinear law's: a Johnson-Cook body melts at its own T_m.
   if (thermal && s.effects.thermal_softening)
     for (const Body b : {Body::flyer, Body::target, Body::window})
-      thermal->set_melting(b, melt_curve_of(*m[index_of(b)]), m[index_of(b)]->latent_heat);
+      if (m[index_of(b)]->strength_model == StrengthModel::bilinear)
+        thermal->set_melting(b, melt_curve_of(*m[index_of(b)]), m[index_of(b)]->latent_heat);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;
   volumetric_smoothing = s.volumetric_smoothing;

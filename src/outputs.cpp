@@ -89,7 +89,7 @@ void Outputs<D>::snapshot(const Simulation<D>& sim, const RunState& run, bool fa
   for (const Body b : {Body::flyer, Body::target, Body::window}) options.melt[index_of(b)] = melt_curve_of(scene_.material_of(b));
   // A body of Johnson-Cook strength melts at its law's T_m (the model's laws, resolved per body).
   for (std::size_t b = 0; b < kBodies; ++b)
-    if (const auto* jc = std::get_if<JohnsonCook>(&sim.model().strength[b])) options.melt_temperature[b] = jc->T_m;
+    if (const JohnsonCook* jc = johnson_cook_of(sim.model().strength[b])) options.melt_temperature[b] = jc->T_m;
   std::optional<Grid<D>> gathered;  // every rank's active rows in the whole grid
   if (scene_.snapshot_grid) {
     gathered.emplace(sim.gathered_grid(options.grid_rows));

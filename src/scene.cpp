@@ -398,15 +398,6 @@ const std::vector<Key>& keys() {
     k.push_back(flag("plasticity", "on",
                      "von Mises strength with mixed hardening; off: hydrodynamic, no deviatoric stress",
                      FIELD(effects.plasticity)));
-    k.push_back(choice<StrengthModel>(
-        "strength_model", {{"bilinear", StrengthModel::bilinear}, {"johnson_cook", StrengthModel::johnson_cook}},
-        "bilinear",
-        "the flow stress of plasticity: bilinear, yield_stress + the plastic modulus of tangent_modulus times "
-        "eps_p (with thermal_softening, Steinberg-Guinan's factor); johnson_cook, (A + B eps_p^n)(1 + C ln "
-        "rate)(1 - T*^m) with each body's jc_* constants, strain rate in 1/s, its own thermal softening and "
-        "melt at jc_melt_temperature (isotropic hardening; not with thermal_softening; built-in constants: "
-        "aluminium, copper)",
-        FIELD(strength_model)));
     k.push_back(flag("thermal", "on", "temperatures by temperature_model; off: no temperature is computed",
                      FIELD(effects.thermal)));
     k.push_back(choice<TemperatureModel>(
@@ -550,6 +541,15 @@ const std::vector<Key>& keys() {
                          "Tillotson alpha, the decay of the vapour branch's b term with expansion", FIELD(material.tillotson_alpha)));
     k.push_back(quantity("tillotson_beta", D::none, closed(0.0, 100.0), "5",
                          "Tillotson beta, the decay of the vapour branch's A term with expansion", FIELD(material.tillotson_beta)));
+    k.push_back(choice<StrengthModel>(
+        "strength_model", {{"bilinear", StrengthModel::bilinear}, {"johnson_cook", StrengthModel::johnson_cook}},
+        "bilinear",
+        "the flow stress of plasticity: bilinear, yield_stress + the plastic modulus of tangent_modulus times "
+        "eps_p (with thermal_softening, Steinberg-Guinan's factor); johnson_cook, (A + B eps_p^n)(1 + C ln "
+        "rate)(1 - T*^m) with the jc_* constants, strain rate in 1/s, its own thermal softening and melt at "
+        "jc_melt_temperature (isotropic hardening; built-in constants: aluminium, copper); each body takes its "
+        "material's; a named material without its own material.NAME.strength_model takes the bare key's",
+        FIELD(material.strength_model)));
     k.push_back(quantity("jc_yield_stress", D::pressure, non_negative(), "324 MPa",
                          "Johnson-Cook A, the yield stress at zero plastic strain, 1 /s and room temperature "
                          "(strength_model = johnson_cook; 6061-T6 after Johnson and Holmquist 1989); 0: the material "
@@ -960,11 +960,24 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   for (const auto& [name, m] : s.materials)
     if (m.tangent_modulus >= m.youngs_modulus)
       fail("material." + name + ".tangent_modulus", "must be smaller than youngs_modulus of material " + name);
-  if (materials_known && s.effects.thermal_softening && s.strength_model == StrengthModel::bilinear) {
-    // Each body softens and melts with its own material's constants; a starting state the material
-    // cannot have (at or above its softening or melt temperature it has no strength before anything
-    // happens) is refused.
+  // Each body's strength law is its material's (strength_model, a material key): the bodies may mix
+  // the bilinear law and Johnson-Cook's (model.cpp).
+  std::string johnson_cook_key;  // the strength_model key of the first material that takes Johnson-Cook
+  bool any_bilinear = false;
+  if (materials_known)
     for (const std::string& name : s.materials_in_use()) {
+      const bool jc = s.material_by_name(name).strength_model == StrengthModel::johnson_cook;
+      // (A named material's law the bare key set is named by the bare key.)
+      const std::string own = material_key_prefix(name) + "strength_model";
+      if (jc && johnson_cook_key.empty()) johnson_cook_key = s.origin.count(own) ? own : "strength_model";
+      any_bilinear = any_bilinear || !jc;
+    }
+  if (materials_known && s.effects.thermal_softening && any_bilinear) {
+    // Each bilinear body softens and melts with its own material's constants; a starting state the
+    // material cannot have (at or above its softening or melt temperature it has no strength before
+    // anything happens) is refused.
+    for (const std::string& name : s.materials_in_use()) {
+      if (s.material_by_name(name).strength_model != StrengthModel::bilinear) continue;
       const std::string prefix = material_key_prefix(name);
       const std::string which = name == "scene" ? std::string() : " (material " + name + ")";
       const Material& m = s.material_by_name(name);
@@ -989,23 +1002,23 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                                               " Pa): the cap would lie below the initial yield" + which);
     }
   }
-  if (s.strength_model == StrengthModel::johnson_cook) {
-    if (!s.effects.plasticity) fail("strength_model", "johnson_cook needs plasticity = on");
+  if (!johnson_cook_key.empty()) {
+    const std::string& key = johnson_cook_key;
+    if (!s.effects.plasticity) fail(key, "johnson_cook needs plasticity = on");
     // Its thermal term softens by the energy model's temperature: the run's must be that one.
-    if (!s.effects.thermal) fail("strength_model", "johnson_cook needs thermal = on (it softens by temperature)");
+    if (!s.effects.thermal) fail(key, "johnson_cook needs thermal = on (it softens by temperature)");
     if (s.temperature_model == TemperatureModel::paper)
-      fail("strength_model", "johnson_cook cannot go with temperature_model = paper: the paper's temperature leaves "
-                             "out the compaction heat, and the law softens by the energy model's; use "
-                             "temperature_model = energy (paper_temperature = on reports the paper's beside it)");
-    if (s.effects.thermal_softening)
-      fail("strength_model", "johnson_cook softens by its own (1 - T*^m) and melts at jc_melt_temperature: use it "
-                             "with thermal_softening = off (Steinberg-Guinan is the bilinear law's softening)");
-    // Each body's material needs its constants, in a state where it has strength.
-    for (const Body b : {Body::flyer, Body::target, Body::window}) {
-      if (!materials_known || (b == Body::window && !s.has_window())) continue;
-      const std::string& name = s.material_name(b);
+      fail(key, "johnson_cook cannot go with temperature_model = paper: the paper's temperature leaves "
+                "out the compaction heat, and the law softens by the energy model's; use "
+                "temperature_model = energy (paper_temperature = on reports the paper's beside it)");
+    if (s.effects.thermal_softening && !any_bilinear)
+      fail(key, "johnson_cook softens by its own (1 - T*^m) and melts at jc_melt_temperature, and no body takes "
+                "the bilinear law that thermal_softening (Steinberg-Guinan) softens: use thermal_softening = off");
+    // Each such material needs its constants, in a state where it has strength.
+    for (const std::string& name : s.materials_in_use()) {
+      const Material& m = s.material_by_name(name);
+      if (m.strength_model != StrengthModel::johnson_cook) continue;
       const std::string prefix = material_key_prefix(name);
-      const Material& m = s.material_of(b);
       if (!m.has_johnson_cook())
         fail(prefix + "jc_yield_stress", "strength_model = johnson_cook, but material " + name +
                                              " has no Johnson-Cook constants: give its " + prefix +
@@ -1152,6 +1165,7 @@ bool same_constants(const Material& a, const Material& b) {
          a.jc_hardening_exponent == b.jc_hardening_exponent && a.jc_rate_coefficient == b.jc_rate_coefficient &&
          a.jc_thermal_exponent == b.jc_thermal_exponent && a.jc_melt_temperature == b.jc_melt_temperature &&
          a.jc_room_temperature == b.jc_room_temperature && a.equation_of_state == b.equation_of_state &&
+         a.strength_model == b.strength_model &&
          a.tillotson_a == b.tillotson_a && a.tillotson_b == b.tillotson_b &&
          a.tillotson_bulk_modulus == b.tillotson_bulk_modulus &&
          a.tillotson_nonlinear_modulus == b.tillotson_nonlinear_modulus && a.tillotson_energy == b.tillotson_energy &&
@@ -1269,6 +1283,10 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   }
   for (const LibraryMaterial& m : material_library()) scene.materials[m.name] = m.constants;
   for (const Entry* e : material_entries) errors.collect(e->at, [&] { set_material_key(scene, *e); });
+  // A named material's strength law is the bare key's unless the scene gives it its own: a scene
+  // that names strength_model once sets every body's, as before the key was a material's.
+  for (auto& [material_name, m] : scene.materials)
+    if (!by_key.count("material." + material_name + ".strength_model")) m.strength_model = scene.material.strength_model;
   // The consistency of the keys is judged only on keys that are each right.
   errors.throw_if_any();
   // Regions and probes in the order the file lists them, not alphabetical.

@@ -36,7 +36,7 @@ namespace {
 // The optional per-point fields the scene's effects need.
 template <int D>
 void enable_fields(Particles<D>& p, const Scene& s) {
-  const StrengthLaw strength = strength_of(s, s.material_of(Body::target), kinematic_hardening(s));  // both bodies' type
+  const StrengthLaw strength = strength_laws(s)[index_of(Body::target)];  // every body's type
   p.enable_strength(has_stress(strength), has_back_stress(strength));
   p.enable_failure(s.effects.spall);
   p.enable_cold_work(s.effects.plasticity && s.taylor_quinney < 1.0);

@@ -158,6 +158,33 @@ int main() {
   CHECK(refuses(base + "plasticity = off\n", "needs plasticity = on"));
   CHECK(refuses(base + "hardening_beta = 0.5\n", "hardening_beta"));
   CHECK(refuses(base + "jc_melt_temperature = 250 K\n", "jc_melt_temperature"));
+  // strength_model is each material's: a named one takes the bare key's unless given its own, and
+  // bodies of different laws each run theirs through MixedStrength.
+  const std::string plates = "porosity = 1\nflyer_height = 0.1 mm\ntarget_height = 0.1 mm\nwidth = 80 um\n"
+                             "flyer_material = copper\ntarget_material = aluminium\n";
+  const Scene mixed_scene = parse(plates + "material.copper.strength_model = johnson_cook\n");
+  CHECK(mixed_scene.material_of(Body::flyer).strength_model == StrengthModel::johnson_cook);
+  CHECK(mixed_scene.material_of(Body::target).strength_model == StrengthModel::bilinear);
+  const Model mixed(mixed_scene);
+  for (const Body b : {Body::flyer, Body::target, Body::window})
+    CHECK(std::holds_alternative<MixedStrength>(mixed.strength[index_of(b)]));
+  const JohnsonCook* flyer_jc = johnson_cook_of(mixed.strength[index_of(Body::flyer)]);
+  CHECK(flyer_jc && flyer_jc->A == 90e6);
+  CHECK(!johnson_cook_of(mixed.strength[index_of(Body::target)]));
+  CHECK(mixed.shear_modulus(Body::flyer) == cu.shear_modulus());
+  // The bare key is every named material's unless it has its own.
+  const Scene overridden = parse(base + "flyer_material = copper\ntarget_material = aluminium\n"
+                                        "material.aluminium.strength_model = bilinear\n");
+  CHECK(overridden.material_of(Body::flyer).strength_model == StrengthModel::johnson_cook);
+  CHECK(overridden.material_of(Body::target).strength_model == StrengthModel::bilinear);
+  // Steinberg-Guinan softens the bilinear bodies beside a Johnson-Cook one; with none it is refused,
+  // and a bilinear body needs its softening constants (tantalum has none).
+  CHECK(parses(plates + "material.copper.strength_model = johnson_cook\nthermal_softening = on\n"));
+  CHECK(refuses("porosity = 1\nflyer_material = copper\ntarget_material = tantalum\n"
+                "material.copper.strength_model = johnson_cook\nthermal_softening = on\n",
+                "material.tantalum.melt_temperature"));
+  CHECK(refuses(plates + "material.copper.strength_model = johnson_cook\nthermal = off\n",
+                "material.copper.strength_model"));
   // Without the key nothing changes: the bilinear law.
   const Model bilinear(parse("porosity = 1\nflyer_height = 0.1 mm\ntarget_height = 0.1 mm\nwidth = 80 um\n"));
   CHECK(std::holds_alternative<VonMises<false>>(bilinear.strength[index_of(Body::target)]));

@@ -19,8 +19,15 @@ constexpr std::size_t index_of(Body b) { return static_cast<std::size_t>(b); }
 // Tillotson's, with expanded and vapour states (tillotson.hpp).
 enum class EquationOfStateModel { mie_gruneisen, tillotson };
 
+// The flow stress of a material's von Mises strength (plasticity = on): bilinear, sigma_Y0 + H eps_p
+// (von_mises.hpp, with Steinberg-Guinan softening where thermal_softening = on), or Johnson-Cook's
+// strain, rate and temperature law with its jc_* constants (johnson_cook.hpp).
+enum class StrengthModel { bilinear, johnson_cook };
+
 struct Material {
   EquationOfStateModel equation_of_state = EquationOfStateModel::mie_gruneisen;
+  // A library material without its own material.NAME.strength_model takes the bare key's (scene.cpp).
+  StrengthModel strength_model = StrengthModel::bilinear;
   double density = 2700.0;               // rho0, solid reference density [kg/m3]
   double youngs_modulus = 69e9;          // E [Pa]; with nu gives only the shear modulus
   double poisson_ratio = 0.33;           // nu

@@ -13,6 +13,7 @@
 #include "mpmshock/eos.hpp"
 #include "mpmshock/johnson_cook.hpp"
 #include "mpmshock/mixed_equation_of_state.hpp"
+#include "mpmshock/mixed_strength.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/spall.hpp"
@@ -31,8 +32,10 @@ struct VariantWith<std::variant<Laws...>, T> {
   using type = std::variant<Laws..., T>;
 };
 using EquationOfState = VariantWith<EquationOfStateLaw, MixedEquationOfState>::type;
-using StrengthLaw =
-    std::variant<NoStrength, VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>, JohnsonCook>;
+// A body's strength law in the kernels: its law's own type where every body has that law, else each
+// body's law through MixedStrength (mixed_strength.hpp).
+using StrengthLaw = std::variant<NoStrength, VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>,
+                                 JohnsonCook, MixedStrength>;
 using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
 using FailureLaw = std::variant<NoFailure, Spall>;
 using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape, QuadraticBSplineDomainShape>;
@@ -41,6 +44,11 @@ using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape
 // the kinematic form even for isotropic hardening (when the other body needs it, so that both
 // bodies' laws are one type).
 StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress = false);
+// Each body's strength law, by Body: strength_of each body's material, of one type (MixedStrength
+// where the bodies' laws differ).
+std::array<StrengthLaw, kBodies> strength_laws(const Scene& s);
+// The Johnson-Cook law of a body's strength, direct or mixed; null for any other law.
+const JohnsonCook* johnson_cook_of(const StrengthLaw& law);
 // A material's equation of state.
 EquationOfStateLaw equation_of_state_of(const Material& mat);
 // Whether either body's material hardens kinematically (hardening_beta < 1): then both store a back stress.
@@ -50,7 +58,8 @@ MeltCurve melt_curve_of(const Material& mat);
 ThermalSoftening softening_of(const Material& mat);
 inline bool has_stress(const StrengthLaw& law) { return !std::holds_alternative<NoStrength>(law); }
 inline bool has_back_stress(const StrengthLaw& law) {
-  return std::holds_alternative<VonMises<true>>(law) || std::holds_alternative<VonMises<true, true>>(law);
+  return std::holds_alternative<VonMises<true>>(law) || std::holds_alternative<VonMises<true, true>>(law) ||
+         std::holds_alternative<MixedStrength>(law);
 }
 
 struct Model {
@@ -82,8 +91,8 @@ struct Model {
   explicit Model(const Scene& s);
 
  private:
-  // With each body's material (model.cpp) and whether they all store a back stress.
-  Model(const Scene& s, const std::array<const Material*, kBodies>& materials, bool back_stress);
+  // With each body's material (model.cpp).
+  Model(const Scene& s, const std::array<const Material*, kBodies>& materials);
 
  public:
 

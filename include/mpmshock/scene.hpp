@@ -35,11 +35,6 @@ enum class TemperatureModel { energy, paper };
 // its neighbourhood (default) or its own.
 enum class SpallCriterion { neighbourhood, point };
 
-// The flow stress of the von Mises strength (plasticity = on): bilinear, sigma_Y0 + H eps_p
-// (von_mises.hpp, with Steinberg-Guinan softening where thermal_softening = on), or Johnson-Cook's
-// strain, rate and temperature law with each material's jc_* constants (johnson_cook.hpp).
-enum class StrengthModel { bilinear, johnson_cook };
-
 // Symmetry about the impact plane y = 0 (symmetry_plane.hpp, mirror_image.hpp): on simulates the
 // target alone and takes the flyer as its mirror image; automatic (the key's "auto") becomes on or
 // off when the scene is parsed, so a parsed Scene holds on or off.
@@ -115,7 +110,6 @@ struct Scene {
   double spall_point_ceiling = 2.0;  // a point's own tension that opens it regardless, over spall_strength
   double taylor_quinney = 1.0;    // share of plastic work that becomes heat
   TemperatureModel temperature_model = TemperatureModel::energy;
-  StrengthModel strength_model = StrengthModel::bilinear;
   bool paper_temperature = false;  // also report the paper model's temperature beside the energy model's
   double flip_fraction = 1.0;  // share of FLIP in the point velocity update; the rest is PIC
   bool skip_unreached = true;  // advance material nothing has reached in closed form (unreached.hpp)
