@@ -73,12 +73,13 @@ compare porous3d "$data/tiny_porous_3d.scene" --set probe.top=surface
 compare smoothing "$data/tiny_porous.scene" --set volumetric_smoothing=on --set av_linear=0.75 \
   --set bounded_expansion=on --set shape_function=bspline2
 compare smoothing_whole "$data/tiny_porous.scene" --set volumetric_smoothing=on --set flyer_mirror=off
-# Three materials (issue 29): a solid copper flyer, its yield changed by a material key, on the porous
-# aluminium target at rest (the laboratory frame) with a LiF window on its far surface; conduction
-# weights its nodal temperatures by the three materials' heat capacities, and each softens and melts
-# by its own Steinberg-Guinan constants.
+# Three materials (issue 29): a solid copper flyer of Johnson-Cook strength, its yield changed by a
+# material key, on the porous aluminium target at rest (the laboratory frame) with a LiF window on its
+# far surface; conduction weights its nodal temperatures by the three materials' heat capacities, and
+# the bilinear bodies soften and melt by their own Steinberg-Guinan constants.
 compare materials "$data/tiny_porous.scene" --set flyer_material=copper --set flyer_porosity=1 \
-  --set target_velocity=0 --set "material.copper.yield_stress=200 MPa" --set spall=on "${probes[@]}" \
+  --set target_velocity=0 --set "material.copper.jc_yield_stress=200 MPa" --set spall=on "${probes[@]}" \
+  --set material.copper.strength_model=johnson_cook --set material.copper.hardening_beta=1 \
   --set "window_height=50 um" --set window_material=lif --set heat_conduction=on --set thermal_softening=on
 # The 4-node B-spline over the point domains (three shared rows between ranks), in the laboratory
 # frame, with Johnson-Cook strength, conduction and spall.
