@@ -8,13 +8,17 @@
 #include <stdexcept>
 #include <sstream>
 
+#include "mpmshock/artificial_heat_flux.hpp"
+#include "mpmshock/heat_conduction.hpp"
 #include "mpmshock/point_update_kernels.hpp"
-#include "slab_rows.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/signals.hpp"
+#include "mpmshock/spall_neighbourhood.hpp"
 #include "mpmshock/symmetry_plane.hpp"
 #include "mpmshock/transfer.hpp"
+#include "mpmshock/volumetric_smoothing.hpp"
 #include "mpmshock/zero_kelvin_check.hpp"
+#include "slab_rows.hpp"
 
 namespace mpmshock {
 namespace {
@@ -44,14 +48,6 @@ void add_transfer_kernels(Kernels<D>& k, const Model& m) {
                                        : grid_to_particles_velocity<D, Shape, false, false>);
   k.gradient_work_and_move =
       stress ? velocity_gradient_work_and_move<D, Shape, true> : velocity_gradient_work_and_move<D, Shape, false>;
-  if (m.conducts_heat()) k.conduct = conduct_heat<D, Shape>;
-  if (m.heat_flux_beta > 0.0) k.heat_flux = artificial_heat_flux<D, Shape>;
-  if (const Spall* spall = std::get_if<Spall>(&m.failure))
-    if (spall->by_neighbourhood) k.open_in_tension = open_by_neighbourhood_tension<D, Shape>;
-  if (smoothing) {
-    k.smooth_pressure = smooth_pressure<D, Shape>;
-    k.smooth_volume_rate = smooth_volume_rate<D, Shape>;
-  }
 }
 
 template <int D>
@@ -63,13 +59,54 @@ Kernels<D> kernels_for(const Model& m) {
   return k;
 }
 
-// The step effects a model calls for, in the order their slots run.
+// The step effects a scene calls for, in the order each slot runs them: the symmetry plane folds
+// the grid before conduction and the heat flux read it; and the symmetry plane, for the passes that
+// fold their own nodal sums.
 template <int D>
-std::vector<std::unique_ptr<StepEffect<D>>> effects_for(const Model& m, const GridGeometry<D>& grid) {
-  std::vector<std::unique_ptr<StepEffect<D>>> effects;
-  if (m.symmetry_plane) effects.push_back(std::make_unique<SymmetryPlane<D>>(grid));
-  if (m.thermal) effects.push_back(std::make_unique<ZeroKelvinCheck<D>>(*m.thermal));
-  return effects;
+struct StepEffects {
+  std::vector<std::unique_ptr<StepEffect<D>>> list;
+  const SymmetryPlane<D>* plane = nullptr;
+};
+
+template <int D, class Shape>
+void add_grid_effects(StepEffects<D>& e, const Scene& s, const Model& m) {
+  if (m.volumetric_smoothing) e.list.push_back(std::make_unique<VolumetricSmoothingEffect<D, Shape>>());
+  if (m.conducts_heat()) {
+    HeatConduction heat;
+    heat.conductivity = m.conductivity;
+    heat.one_material = s.one_material();
+    for (std::size_t b = 0; b < kBodies; ++b) {
+      heat.specific_heat[b] = s.material_of(Body(b)).specific_heat;  // (a window's slot unused without one)
+      if (m.diffusivity[b] > 0.0) heat.relaxation_time[b] = m.cell_size * m.cell_size / (M_PI * M_PI * m.diffusivity[b]);
+    }
+    e.list.push_back(std::make_unique<HeatConductionEffect<D, Shape>>(*m.thermal, std::move(heat)));
+  }
+  if (m.heat_flux_beta > 0.0) {
+    ArtificialHeatFlux flux;
+    flux.beta = m.heat_flux_beta;
+    flux.cell_size = m.cell_size;
+    for (const Body b : {Body::flyer, Body::target, Body::window}) {
+      flux.specific_heat[index_of(b)] = s.material_of(b).specific_heat;
+      flux.sound_speed[index_of(b)] = m.reference_sound_speed(b);
+    }
+    flux.one_material = s.one_material();
+    e.list.push_back(std::make_unique<ArtificialHeatFluxEffect<D, Shape>>(*m.thermal, std::move(flux)));
+  }
+  if (const Spall* spall = std::get_if<Spall>(&m.failure))
+    if (spall->by_neighbourhood) e.list.push_back(std::make_unique<SpallNeighbourhoodEffect<D, Shape>>(*spall));
+}
+
+template <int D>
+StepEffects<D> effects_for(const Scene& s, const Model& m, const GridGeometry<D>& grid) {
+  StepEffects<D> e;
+  if (m.symmetry_plane) {
+    auto plane = std::make_unique<SymmetryPlane<D>>(grid);
+    e.plane = plane.get();
+    e.list.push_back(std::move(plane));
+  }
+  std::visit([&](auto shape) { add_grid_effects<D, decltype(shape)>(e, s, m); }, m.shape);
+  if (m.thermal) e.list.push_back(std::make_unique<ZeroKelvinCheck<D>>(*m.thermal));
+  return e;
 }
 
 template <int D>
@@ -93,12 +130,15 @@ template <int D>
 Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock,
                           const Comm& comm)
     : comm_(&comm), whole_geo_(grid.whole()), slabs_(strip_count(grid)), model_(scene), points_(std::move(points)),
-      kernels_(kernels_for<D>(model_)),
-      effects_(effects_for<D>(model_, grid)), unreached_(points_.size()), clock_(clock) {
+      kernels_(kernels_for<D>(model_)), unreached_(points_.size()), clock_(clock) {
+  StepEffects<D> effects = effects_for<D>(scene, model_, grid);
+  effects_ = std::move(effects.list);
+  plane_ = effects.plane;
+  for (const auto& e : effects_)  // each slot's list, in the order the effects were made
+    for (std::size_t slot = 0; slot < kStepSlots; ++slot)
+      if (e->slots() & slot_bit(StepSlot(slot))) slot_effects_[slot].push_back(e.get());
   // Each rank is given a share of the points (one rank: all of them), in id order.
   total_points_ = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(points_.size())));
-  for (const auto& e : effects_)
-    if (const auto* plane = dynamic_cast<const SymmetryPlane<D>*>(e.get())) plane_ = plane;
   if (model_.symmetry_plane && std::find(points_.body.begin(), points_.body.end(), Body::flyer) != points_.body.end())
     throw std::logic_error("symmetry = on simulates the target's points alone (build_initial_state gives them)");
   points_.work.assign(points_.size(), 0.0);  // scratch of every step, however the points were made
@@ -116,21 +156,6 @@ Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Parti
   if (model_.skip_unreached && clock.unreached_tail != Clock::kNoneSaved)
     unreached_ = UnreachedMaterial<D>(scene, model_, points_, clock.unreached_head, clock.unreached_tail, comm);
   remember_unreached();
-  heat_flux_.beta = model_.heat_flux_beta;
-  heat_flux_.cell_size = model_.cell_size;
-  for (const Body b : {Body::flyer, Body::target, Body::window}) {
-    const Material& mat = scene.material_of(b);
-    heat_flux_.specific_heat[static_cast<std::size_t>(b)] = mat.specific_heat;
-    heat_flux_.sound_speed[static_cast<std::size_t>(b)] = model_.reference_sound_speed(b);
-  }
-  heat_flux_.one_material = scene.one_material();
-  heat_.conductivity = model_.conductivity;
-  heat_.one_material = scene.one_material();
-  for (std::size_t b = 0; b < kBodies; ++b) {
-    heat_.specific_heat[b] = scene.material_of(Body(b)).specific_heat;  // (a window's slot unused without one)
-    if (model_.diffusivity[b] > 0.0)
-      heat_.relaxation_time[b] = model_.cell_size * model_.cell_size / (M_PI * M_PI * model_.diffusivity[b]);
-  }
 }
 
 template <int D>
@@ -188,40 +213,33 @@ StepStatus Simulation<D>::step(double dt) {
     return {StepStatus::Code::left_grid, kNoPoint};
   }
   if (!bins_within_slab()) throw std::logic_error("a material point outside the grid rows held here at binning");
-  const RowRange rows = bins_.rows();
   const bool musl = model_.scheme == UpdateScheme::musl;
-  grid_.reset(rows);                                                   // reset grid
-  if (kernels_.smooth_pressure)                                        // (P + q)-bar_p for P2G
-    kernels_.smooth_pressure(points_, reached, bins_, grid_.geo, stencils_, halo_, plane_, grid_, smoothing_);
+  StepContext<D> c{points_, reached, bins_, grid_, stencils_, halo_, plane_, bins_.rows(), dt};
+  auto run = [&](StepSlot slot, void (StepEffect<D>::*act)(StepContext<D>&)) {
+    for (StepEffect<D>* e : slot_effects_[static_cast<std::size_t>(slot)]) (e->*act)(c);
+  };
+  grid_.reset(c.rows);                                                 // reset grid
+  run(StepSlot::before_to_grid, &StepEffect<D>::before_to_grid);       //   (smoothing: (P + q)-bar_p)
   kernels_.to_grid(points_, bins_, grid_, stencils_, halo_);           // P2G: m_i, p_i, f_i (and N_ip)
-  for (auto& e : effects_) e->after_to_grid(grid_, rows);              //   (symmetry plane: the mirror's share)
-  if (kernels_.conduct)                                                //   heat conduction: E_p
-    kernels_.conduct(points_, reached, bins_, grid_, stencils_, halo_, *model_.thermal, heat_, plane_, dt);
-  if (kernels_.heat_flux)                                              //   artificial heat flux: E_p
-    kernels_.heat_flux(points_, reached, bins_, grid_, stencils_, halo_, *model_.thermal, heat_flux_, plane_, dt);
-  update_grid_momentum(grid_, rows, dt);                               // a_i, v_i^{n+1}
-  for (auto& e : effects_) e->after_grid_update(grid_, rows, dt);      //   (boundary conditions)
+  run(StepSlot::after_to_grid, &StepEffect<D>::after_to_grid);         //   (plane's fold; conduction, heat flux: E_p)
+  update_grid_momentum(grid_, c.rows, dt);                             // a_i, v_i^{n+1}
+  run(StepSlot::after_grid_update, &StepEffect<D>::after_grid_update); //   (boundary conditions)
   kernels_.velocity_to_points(points_, reached, bins_, grid_, stencils_, halo_, dt,  // G2P: FLIP (/PIC) v_p
                               model_.flip_fraction);                   //   (MUSL: re-map m_p v_p)
   if (musl) {
-    for (auto& e : effects_) e->before_remap(grid_, rows);
-    remap_grid_velocity(grid_, rows);                                  // MUSL: v~_i
-    for (auto& e : effects_) e->after_remap(grid_, rows);
+    run(StepSlot::before_remap, &StepEffect<D>::before_remap);         //   (plane's fold)
+    remap_grid_velocity(grid_, c.rows);                                // MUSL: v~_i
+    run(StepSlot::after_remap, &StepEffect<D>::after_remap);
   }
+  c.velocity = musl ? &grid_.v_remap : &grid_.v;
   const std::size_t left = kernels_.gradient_work_and_move(            // L_p, work_p, x_p
-      points_, reached, grid_, stencils_, musl ? grid_.v_remap : grid_.v, dt);
+      points_, reached, grid_, stencils_, *c.velocity, dt);
   unreached_.advance(points_, dt);                                     //   the rest: x_p += v0 dt
-  if (kernels_.smooth_volume_rate)                                     //   tr L_p, work_p: smoothed
-    kernels_.smooth_volume_rate(points_, reached, bins_, grid_, stencils_, halo_, plane_,
-                                musl ? grid_.v_remap : grid_.v, dt, smoothing_);
-  const double* volume_rate = kernels_.smooth_volume_rate ? smoothing_.volume_rate.data() : nullptr;
-  StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt, volume_rate);  // E, F, s, P, q
-  if (kernels_.open_in_tension)                                        //   spall: by the neighbourhood's tension
-    kernels_.open_in_tension(points_, reached, bins_, grid_, stencils_, halo_, plane_,
-                             std::get<Spall>(model_.failure), node_tension_);
-  StepStatus effect;  // the effects' checks, agreed with the step's (MPI: in one collective)
-  for (auto& e : effects_)
-    if (effect = with_id(e->after_point_update(points_, dt)); !effect.ok()) break;
+  run(StepSlot::after_move, &StepEffect<D>::after_move);               //   (smoothing: tr L_p, work_p)
+  StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt, c.volume_rate);  // E, F, s, P, q
+  StepStatus effect;  // the effects' checks (spall's neighbourhood opens points), agreed with the step's
+  for (StepEffect<D>* e : slot_effects_[static_cast<std::size_t>(StepSlot::after_point_update)])
+    if (effect = with_id(e->after_point_update(c)); !effect.ok()) break;
   const StepStatus failed = agree_on(update, left, effect);            // the ranks' maxima and failures
   clock_.time += dt;
   ++clock_.steps;
@@ -326,7 +344,7 @@ StepStatus Simulation<D>::with_id(StepStatus s) const {
 
 template <int D>
 StepStatus Simulation<D>::check_at_sample() {
-  for (auto& e : effects_)
+  for (StepEffect<D>* e : slot_effects_[static_cast<std::size_t>(StepSlot::at_sample)])
     if (const StepStatus s = agree(with_id(e->at_sample(points_))); !s.ok()) return s;
   return {};
 }

@@ -35,6 +35,7 @@
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
+#include "mpmshock/step_effect.hpp"
 #include "mpmshock/strip_bins.hpp"
 #include "mpmshock/symmetry_plane.hpp"
 #include "mpmshock/temperature.hpp"
@@ -124,5 +125,24 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
     pts.E[p] += flux.specific_heat[static_cast<std::size_t>(pts.body[p])] * heat;
   }
 }
+
+// The heat flux as a step effect: after P2G and the symmetry plane's fold (after conduction where
+// both act), with the states of the step's start.
+template <int D, class Shape>
+class ArtificialHeatFluxEffect final : public StepEffect<D> {
+ public:
+  ArtificialHeatFluxEffect(const BodyTemperatures& thermal, ArtificialHeatFlux constants)
+      : thermal_(thermal), flux_(std::move(constants)) {}
+  const char* name() const override { return "artificial heat flux"; }
+  unsigned slots() const override { return slot_bit(StepSlot::after_to_grid); }
+  void after_to_grid(StepContext<D>& c) override {
+    artificial_heat_flux<D, Shape>(c.points, c.reached, c.bins, c.grid, c.stencils, c.halo, thermal_, flux_, c.plane,
+                                   c.dt);
+  }
+
+ private:
+  const BodyTemperatures& thermal_;
+  ArtificialHeatFlux flux_;  // the constants and the nodal scratch
+};
 
 }  // namespace mpmshock

@@ -47,6 +47,7 @@
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
+#include "mpmshock/step_effect.hpp"
 #include "mpmshock/strip_bins.hpp"
 #include "mpmshock/symmetry_plane.hpp"
 #include "mpmshock/temperature.hpp"
@@ -192,5 +193,23 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
     pts.E[p] += dt * heat - h.specific_heat[b] * (d[p] - d_grid) * relax[b];
   }
 }
+
+// Heat conduction as a step effect: after P2G and the symmetry plane's fold, with the temperatures of
+// the step's start.
+template <int D, class Shape>
+class HeatConductionEffect final : public StepEffect<D> {
+ public:
+  HeatConductionEffect(const BodyTemperatures& thermal, HeatConduction constants)
+      : thermal_(thermal), heat_(std::move(constants)) {}
+  const char* name() const override { return "heat conduction"; }
+  unsigned slots() const override { return slot_bit(StepSlot::after_to_grid); }
+  void after_to_grid(StepContext<D>& c) override {
+    conduct_heat<D, Shape>(c.points, c.reached, c.bins, c.grid, c.stencils, c.halo, thermal_, heat_, c.plane, c.dt);
+  }
+
+ private:
+  const BodyTemperatures& thermal_;
+  HeatConduction heat_;  // the constants and the nodal scratch
+};
 
 }  // namespace mpmshock

@@ -8,6 +8,7 @@
 // numbers one process would, for its points: the outputs are the same bits on any number of ranks.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -15,22 +16,18 @@
 #include <string>
 #include <vector>
 
-#include "mpmshock/artificial_heat_flux.hpp"
 #include "mpmshock/comm.hpp"
 #include "mpmshock/constitutive.hpp"
 #include "mpmshock/decomposition.hpp"
 #include "mpmshock/grid.hpp"
 #include "mpmshock/halo.hpp"
-#include "mpmshock/heat_conduction.hpp"
 #include "mpmshock/model.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
-#include "mpmshock/spall_neighbourhood.hpp"
 #include "mpmshock/step_effect.hpp"
 #include "mpmshock/strip_bins.hpp"
 #include "mpmshock/symmetry_plane.hpp"
 #include "mpmshock/unreached.hpp"
-#include "mpmshock/volumetric_smoothing.hpp"
 
 namespace mpmshock {
 
@@ -47,21 +44,6 @@ struct Kernels {
   std::size_t (*gradient_work_and_move)(Particles<D>&, PointRange, const Grid<D>&, const StencilStore<D>&,
                                         const std::vector<Vec<D>>& u, double dt);
   StressUpdateResult (*update_points)(Particles<D>&, PointRange, const Model&, double dt, const double* volume_rate);
-  // Volumetric smoothing's two passes, or null when the scene has none.
-  void (*smooth_pressure)(Particles<D>&, PointRange, const StripBins&, const GridGeometry<D>&, StencilStore<D>&,
-                          const Halo<D>&, const SymmetryPlane<D>*, const Grid<D>&, VolumetricSmoothing&);
-  void (*smooth_volume_rate)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
-                             const Halo<D>&, const SymmetryPlane<D>*, const std::vector<Vec<D>>&, double,
-                             VolumetricSmoothing&);
-  // The artificial heat flux, or null when the scene has none.
-  void (*heat_flux)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
-                    const Halo<D>&, const BodyTemperatures&, ArtificialHeatFlux&, const SymmetryPlane<D>*, double dt);
-  // Spall's neighbourhood criterion (spall_neighbourhood.hpp), or null when the scene has none.
-  void (*open_in_tension)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
-                          const Halo<D>&, const SymmetryPlane<D>*, const Spall&, std::vector<double>& node_tension);
-  // Heat conduction, or null when the scene has none.
-  void (*conduct)(Particles<D>&, PointRange, const StripBins&, const Grid<D>&, const StencilStore<D>&,
-                  const Halo<D>&, const BodyTemperatures&, HeatConduction&, const SymmetryPlane<D>*, double dt);
 };
 
 // Where the integrator stands: all it needs, besides the points, to take the next step.
@@ -180,12 +162,10 @@ class Simulation {
   StripBins bins_;
   StencilStore<D> stencils_;  // the step's shape weights, computed once by P2G
   Kernels<D> kernels_;
-  HeatConduction heat_;
-  VolumetricSmoothing smoothing_;  // its scratch (volumetric_smoothing = on)
-  ArtificialHeatFlux heat_flux_;
-  std::vector<double> node_tension_;  // spall's neighbourhood criterion: its nodal sums
+  // The step effects the scene calls for (simulation.cpp: effects_for), each slot's in the order made.
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;
-  const SymmetryPlane<D>* plane_ = nullptr;  // the symmetry plane among effects_ (symmetry = on), for conduction
+  std::array<std::vector<StepEffect<D>*>, kStepSlots> slot_effects_;
+  const SymmetryPlane<D>* plane_ = nullptr;  // the symmetry plane among effects_ (symmetry = on), else null
   UnreachedMaterial<D> unreached_;
   Clock clock_;
 };

@@ -34,6 +34,7 @@
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/spall.hpp"
+#include "mpmshock/step_effect.hpp"
 #include "mpmshock/strip_bins.hpp"
 #include "mpmshock/symmetry_plane.hpp"
 
@@ -78,5 +79,23 @@ void open_by_neighbourhood_tension(Particles<D>& pts, PointRange range, const St
     if (back_stress) pts.alpha[p] = {};
   }
 }
+
+// The criterion as a step effect: after the point update, on its new states.
+template <int D, class Shape>
+class SpallNeighbourhoodEffect final : public StepEffect<D> {
+ public:
+  explicit SpallNeighbourhoodEffect(const Spall& law) : law_(law) {}
+  const char* name() const override { return "spall by the neighbourhood's tension"; }
+  unsigned slots() const override { return slot_bit(StepSlot::after_point_update); }
+  StepStatus after_point_update(StepContext<D>& c) override {
+    open_by_neighbourhood_tension<D, Shape>(c.points, c.reached, c.bins, c.grid, c.stencils, c.halo, c.plane, law_,
+                                            node_tension_);
+    return {};
+  }
+
+ private:
+  Spall law_;
+  std::vector<double> node_tension_;  // its nodal sums
+};
 
 }  // namespace mpmshock

@@ -1,16 +1,58 @@
 // Effects that act on the grid or on all points once per step (or once per sample), as opposed to
-// the per-point laws of model.hpp. Each is a small class that overrides the slots it acts in, as a
-// LAMMPS fix declares its slots; Simulation::step() calls the slots in a fixed order, and the set
-// of effects is chosen once at set-up (Simulation's constructor). A virtual call per slot per
-// step, never per point.
+// the per-point laws of model.hpp: the symmetry plane, heat conduction, the artificial heat flux,
+// volumetric smoothing, spall's neighbourhood criterion, the 0 K check. Each is a small class that
+// declares the slots it acts in (slots()) and overrides them, as a LAMMPS fix declares its
+// masks; Simulation builds one list per slot once, at set-up, from what the effects declare, and
+// step() calls each slot's list in the order the effects were made (simulation.cpp: effects_for).
+// A slot gets the step's context: its points, grid, stencils and scratch. A virtual call per slot
+// per step, never per point.
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/halo.hpp"
 #include "mpmshock/particles.hpp"
+#include "mpmshock/shape.hpp"
+#include "mpmshock/strip_bins.hpp"
 
 namespace mpmshock {
+
+template <int D>
+class SymmetryPlane;
+
+// What the step hands its effects: everything a grid pass needs, and what one pass leaves for the
+// step (the smoothed volume rate for the point update).
+template <int D>
+struct StepContext {
+  Particles<D>& points;
+  PointRange reached;  // the points the step computes (unreached.hpp)
+  const StripBins& bins;
+  Grid<D>& grid;
+  StencilStore<D>& stencils;  // the step's shape weights (P2G computes them)
+  const Halo<D>& halo;
+  const SymmetryPlane<D>* plane;  // symmetry = on, else null
+  RowRange rows;                   // the node rows the step's points touch
+  double dt;
+  const std::vector<Vec<D>>* velocity = nullptr;  // the nodal velocity the points moved by (after_move)
+  const double* volume_rate = nullptr;            // the smoothed tr L per point, set in after_move
+};
+
+// The slots of a step, in the order step() runs them (an effect declares them as a mask, slot_bit).
+enum class StepSlot : unsigned {
+  before_to_grid,      // before P2G (volumetric smoothing's pressure)
+  after_to_grid,       // after P2G, before anything reads the grid
+  after_grid_update,   // after the grid momentum update: nodal v^{n+1} and a set
+  before_remap,        // MUSL: after the points' momenta are scattered again
+  after_remap,         // MUSL: after the re-mapped nodal velocity is set
+  after_move,          // after the velocity gradient, work and move
+  after_point_update,  // after the constitutive update of every point
+  at_sample,           // at each sample time, for checks worth their cost only there
+  count
+};
+constexpr unsigned slot_bit(StepSlot s) { return 1u << static_cast<unsigned>(s); }
+constexpr std::size_t kStepSlots = static_cast<std::size_t>(StepSlot::count);
 
 // What a step (or a check) found. Numerical trouble is a status, not an exception: the caller
 // decides to stop, writes a final snapshot and reports (Simulation::describe explains every code).
@@ -36,18 +78,19 @@ class StepEffect {
  public:
   virtual ~StepEffect() = default;
   virtual const char* name() const = 0;
+  // The slots it acts in: slot_bit(...) | ...; step() calls only those.
+  virtual unsigned slots() const = 0;
 
-  // After P2G, before anything reads the grid (the symmetry plane folds its mirror's share here).
-  virtual void after_to_grid(Grid<D>&, RowRange) {}
-  // After the grid momentum update: nodal v^{n+1} and a are set (boundary conditions act here).
-  virtual void after_grid_update(Grid<D>&, RowRange, double /*dt*/) {}
-  // MUSL: after the points' momenta are scattered again, before the re-mapped velocity is formed.
-  virtual void before_remap(Grid<D>&, RowRange) {}
-  // MUSL: after the re-mapped nodal velocity v_remap is set.
-  virtual void after_remap(Grid<D>&, RowRange) {}
-  // After the constitutive update of every point.
-  virtual StepStatus after_point_update(Particles<D>&, double /*dt*/) { return {}; }
-  // At each sample time, for checks worth their cost only there.
+  virtual void before_to_grid(StepContext<D>&) {}
+  // The symmetry plane folds its mirror's share here, then conduction and the heat flux act.
+  virtual void after_to_grid(StepContext<D>&) {}
+  // Boundary conditions act here.
+  virtual void after_grid_update(StepContext<D>&) {}
+  virtual void before_remap(StepContext<D>&) {}
+  virtual void after_remap(StepContext<D>&) {}
+  virtual void after_move(StepContext<D>&) {}
+  // A check's failure is its status (the point's storage index); the step stops at the first.
+  virtual StepStatus after_point_update(StepContext<D>&) { return {}; }
   virtual StepStatus at_sample(const Particles<D>&) { return {}; }
 };
 

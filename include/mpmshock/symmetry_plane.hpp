@@ -32,10 +32,12 @@ class SymmetryPlane final : public StepEffect<D> {
  public:
   explicit SymmetryPlane(const GridGeometry<D>& g) : plane_row_(static_cast<int>(std::lround(-g.y_min * g.inv_h))) {}
   const char* name() const override { return "symmetry plane"; }
+  unsigned slots() const override { return slot_bit(StepSlot::after_to_grid) | slot_bit(StepSlot::before_remap); }
 
   // Each ghost node is the only one folded onto its mirror node, so one pass folds it and sets it.
-  void after_to_grid(Grid<D>& g, RowRange rows) override {
-    fold(g, rows, [&g](std::size_t ghost, std::size_t image, bool on_plane) {
+  void after_to_grid(StepContext<D>& c) override {
+    Grid<D>& g = c.grid;
+    fold(g, c.rows, [&g](std::size_t ghost, std::size_t image, bool on_plane) {
       if (on_plane) {  // its own mirror image: twice the share, no normal component
         g.m[image] *= 2.0;
         twice_tangential(g.mv[image]);
@@ -56,8 +58,9 @@ class SymmetryPlane final : public StepEffect<D> {
     });
   }
 
-  void before_remap(Grid<D>& g, RowRange rows) override {
-    fold(g, rows, [&g](std::size_t ghost, std::size_t image, bool on_plane) {
+  void before_remap(StepContext<D>& c) override {
+    Grid<D>& g = c.grid;
+    fold(g, c.rows, [&g](std::size_t ghost, std::size_t image, bool on_plane) {
       if (on_plane) twice_tangential(g.mv[image]);
       else g.mv[ghost] = reflected(add_reflected(g.mv[image], g.mv[ghost]));
     });

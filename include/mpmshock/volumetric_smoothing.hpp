@@ -39,6 +39,7 @@
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
+#include "mpmshock/step_effect.hpp"
 #include "mpmshock/strip_bins.hpp"
 #include "mpmshock/symmetry_plane.hpp"
 
@@ -149,5 +150,25 @@ void smooth_volume_rate(Particles<D>& pts, PointRange range, const StripBins& bi
     pts.work[p] -= 0.5 * dt * pts.volume(p) / pts.m[p] * (pts.P[p] + pts.q[p]) * (trA - vs.trace_A[p]);
   }
 }
+
+// The two passes as a step effect: the pressure before P2G, the volume rate after the move (which the
+// point update then reads from the context).
+template <int D, class Shape>
+class VolumetricSmoothingEffect final : public StepEffect<D> {
+ public:
+  const char* name() const override { return "volumetric smoothing"; }
+  unsigned slots() const override { return slot_bit(StepSlot::before_to_grid) | slot_bit(StepSlot::after_move); }
+  void before_to_grid(StepContext<D>& c) override {
+    smooth_pressure<D, Shape>(c.points, c.reached, c.bins, c.grid.geo, c.stencils, c.halo, c.plane, c.grid, scratch_);
+  }
+  void after_move(StepContext<D>& c) override {
+    smooth_volume_rate<D, Shape>(c.points, c.reached, c.bins, c.grid, c.stencils, c.halo, c.plane, *c.velocity, c.dt,
+                                 scratch_);
+    c.volume_rate = scratch_.volume_rate.data();
+  }
+
+ private:
+  VolumetricSmoothing scratch_;
+};
 
 }  // namespace mpmshock

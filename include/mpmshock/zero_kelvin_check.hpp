@@ -16,6 +16,7 @@ class ZeroKelvinCheck final : public StepEffect<D> {
  public:
   explicit ZeroKelvinCheck(const BodyTemperatures& thermal) : thermal_(thermal) {}
   const char* name() const override { return "0 K check"; }
+  unsigned slots() const override { return slot_bit(StepSlot::at_sample); }
 
   StepStatus at_sample(const Particles<D>& pts) override {
     std::size_t first = ~std::size_t{0};
