@@ -16,7 +16,7 @@ from .formats import RELATIVE, unit_of
 from .measure import plateau
 from .plan import NS, REGION, UM
 
-SHAPE_COLORS = {"bspline2": "tab:blue", "gimp": "tab:green", "bilinear": "tab:red"}
+SHAPE_COLORS = {"bspline2_domain": "tab:purple", "bspline2": "tab:blue", "gimp": "tab:green", "bilinear": "tab:red"}
 PPC_STYLES = {1: ":", 2: "-", 3: "--"}
 
 
@@ -89,7 +89,6 @@ def figure_solid_h(solid, path):
                 ax.loglog(hs[keep], errors[keep], marker="o", ms=3, color=SHAPE_COLORS[o.series.info["shape"]],
                           linestyle=PPC_STYLES[o.series.info["ppc"]], label=_solid_label(o))
             h = np.array([min(min(o.h) for o in solid) / UM, max(max(o.h) for o in solid) / UM])
-            _cell_axis(ax, sorted({c / UM for o in solid for c in o.h}))
             ax.set_title(f"{q}, {v:g} m/s", fontsize=8)
             ax.set_xlabel("cell size (um)", fontsize=7)
             ax.set_ylabel(f"|error| ({unit})", fontsize=7)
@@ -99,7 +98,8 @@ def figure_solid_h(solid, path):
                 ref = hi * 0.5 * (h / h[-1]) ** p
                 ax.loglog(h, ref, color="gray", lw=0.6, linestyle=ls, label=f"slope {p}")
             ax.set_ylim(lo, hi)
-    _legend_of_all(fig, axes, 6)
+            _cell_axis(ax, sorted({c / UM for o in solid for c in o.h}))   # after loglog, which resets the ticks
+    _legend_of_all(fig, axes, 6 if len(speeds) > 1 else 2)   # one narrow column: two
     return _save(fig, path)
 
 
@@ -129,6 +129,7 @@ POROUS_PLOTTED = ("macro_normal_stress", "pressure_mean", "macro_density", "dens
 
 def figure_porous(porous, r, path):
     """Porous plateaus against h/r (r the void radius): seed means, single layouts, limits, full compaction."""
+    import matplotlib.ticker
     deltas = sorted({o.series.info["delta"] for o in porous})
     fig, axes = _figure(len(POROUS_PLOTTED), len(deltas), size=(3.3, 2.3))
     for col, delta in enumerate(deltas):
@@ -153,12 +154,13 @@ def figure_porous(porous, r, path):
             ax.set_xscale("log")
             ax.set_xticks([0.0625, 0.125, 0.25, 0.5, 1.0])
             ax.set_xticklabels(["1/16", "1/8", "1/4", "1/2", "1"])
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())   # a narrow range labels them
             ax.set_xlim(hr[-1] / 2.8, hr[0] * 1.4)
             ax.set_title(f"{q}, delta {delta:g}", fontsize=8)
             ax.set_xlabel("h / r", fontsize=7)
             ax.set_ylabel(unit_of(q), fontsize=7)
             ax.tick_params(labelsize=6)
-    _legend_of_all(fig, axes, 4)
+    _legend_of_all(fig, axes, 4 if len(deltas) > 1 else 2)
     return _save(fig, path)
 
 
@@ -212,7 +214,7 @@ def figure_windows(cases, path):
             ax.set_xlabel("t (ns)", fontsize=7)
             ax.set_ylabel(unit, fontsize=7)
             ax.tick_params(labelsize=6)
-    _legend_of_all(fig, axes, 5)
+    _legend_of_all(fig, axes, 5 if len(cases) > 1 else 2)   # one narrow column: two
     return _save(fig, path)
 
 

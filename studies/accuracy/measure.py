@@ -14,7 +14,7 @@ from mpmshock_post import converge
 from mpmshock_post.errors import PostError
 from mpmshock_post.reader import Run
 
-from .plan import REGION
+from .plan import MAIN_SHAPE, REGION
 
 QUANTITIES = ("density_mean", "macro_density", "pressure_mean", "macro_normal_stress", "temperature_mean",
               "temperature_std")
@@ -93,16 +93,16 @@ def nice_cell(h, width):
 
 
 def study_rate(study, fallback):
-    """Median point-steps/s of the study's bspline2 runs of at least LARGE_RUN points, their threads,
-    the share of steps on fewer threads, the number of runs and the quartiles; the answer's finest
-    runs (`fallback`, an Outcome) where there are none."""
+    """Median point-steps/s of the study's MAIN_SHAPE runs (the shape whose cost the answer gives) of
+    at least LARGE_RUN points, their threads, the share of steps on fewer threads, the number of runs
+    and the quartiles; the answer's finest runs (`fallback`, an Outcome) where there are none."""
     runs = []
     for run_dir, s in study.all_runs().items():
         try:
             shape = Run(run_dir).scene["shape_function"]
         except (PostError, KeyError):
             continue
-        if shape == "bspline2" and s.get("material_points", 0) >= LARGE_RUN and s.get("exit_code") == 0:
+        if shape == MAIN_SHAPE and s.get("material_points", 0) >= LARGE_RUN and s.get("exit_code") == 0:
             runs.append(s)
     if not runs:
         runs = fallback.summaries[-1]

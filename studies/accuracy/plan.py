@@ -108,17 +108,21 @@ class Plan:
     quick: bool
     solid_speeds: tuple = (500.0, 1000.0, 2000.0)
     solid_cells: tuple = (20e-6, 10e-6, 5e-6)
-    solid_extra_cell: float = 2.5e-6       # a fourth level for bspline2, ppc 2, 1000 m/s
-    solid_shapes: tuple = ("bspline2", "gimp", "bilinear")
+    solid_extra_cell: float = 2.5e-6       # a fourth level for the main shape, ppc 2, 1000 m/s
+    solid_shapes: tuple = ("bspline2_domain", "bspline2", "gimp", "bilinear")   # the main shape first
     solid_ppc: tuple = (1, 2, 3)
-    solid_width: float = 60e-6
+    # 4 cells at the coarsest 20 um: the narrowest periodic column bspline2_domain's 4 x 4 stencil
+    # allows (bspline2, gimp and bilinear need 3)
+    solid_width: float = 80e-6
     solid_height: float = 1e-3
     solid_end: float = 200e-9
     solid_band: tuple = (100e-6, 400e-6)
     porous_deltas: tuple = (1.03, 1.1, 1.4)
     porous_seeds: dict = field(default_factory=lambda: {1.03: 3, 1.1: 3, 1.4: 2})
-    porous_shapes_at: float = 1.1              # porosity at which gimp and bilinear also run
-    porous_shape_seeds: dict = field(default_factory=lambda: {"bilinear": 2, "gimp": 1})
+    porous_shapes_at: float = 1.1              # porosity at which the comparison shapes also run
+    # the comparison shapes beside the main one and their layouts (seeds 1, 2, ... as the main shape's):
+    # bspline2 (the default until 2026-12-05) and bilinear (the paper's cells) with 2, gimp with 1
+    porous_shape_seeds: dict = field(default_factory=lambda: {"bspline2": 2, "gimp": 1, "bilinear": 2})
     void_radius: float = 20e-6
     porous_cells: tuple = (10e-6, 5e-6, 2.5e-6)
     porous_width: float = 200e-6
@@ -131,7 +135,8 @@ class Plan:
     sensitivity_cell: float = 5e-6
     sensitivity_seeds: int = 2
     sensitivity_av: tuple = (2.0, 1.0, 0.5, 0.25)
-    sensitivity_cfl: tuple = (0.6, 0.45, 0.3, 0.1)
+    # the main shape's automatic cfl (MAIN_CFL) and around it: can the step grow?
+    sensitivity_cfl: tuple = (0.9, 0.8, 0.6, 0.3)
     sensitivity_flip: tuple = (1.0, 0.99, 0.95)
     answer_cells: tuple = (20e-6, 10e-6, 5e-6)
     answer_check_cells: tuple = (20e-6, 10e-6, 5e-6, 2.5e-6)
@@ -145,10 +150,11 @@ class Plan:
     def make(cls, quick):
         if not quick:
             return cls(quick=False)
-        return cls(quick=True, solid_speeds=(1000.0,), solid_extra_cell=None, solid_shapes=("bspline2", "bilinear"),
-                   solid_ppc=(2,), porous_deltas=(1.1,), porous_seeds={1.1: 2}, porous_shape_seeds={},
+        return cls(quick=True, solid_speeds=(1000.0,), solid_extra_cell=None,
+                   solid_shapes=("bspline2_domain", "bilinear"), solid_ppc=(2,), porous_deltas=(1.1,),
+                   porous_seeds={1.1: 2}, porous_shape_seeds={"bspline2": 1},
                    porous_cells=(10e-6, 5e-6), sensitivity_cell=10e-6,
-                   sensitivity_seeds=1, sensitivity_av=(2.0, 1.0, 0.5), sensitivity_cfl=(0.6, 0.3, 0.15),
+                   sensitivity_seeds=1, sensitivity_av=(2.0, 1.0, 0.5), sensitivity_cfl=(0.8, 0.6, 0.3),
                    sensitivity_flip=(1.0, 0.95), answer_cells=(40e-6, 20e-6, 10e-6),
                    answer_check_cells=(40e-6, 20e-6, 10e-6), answer_width=400e-6, answer_seeds=1, answer_anchor=False)
 
@@ -160,50 +166,55 @@ def _truth(exact):
             "macro_normal_stress": exact.pressure, "temperature_mean": exact.temperature}
 
 
-# The shape the study's porous, sensitivity and answer parts run (the default until 2026-12-05).
-MAIN_SHAPE = "bspline2"
-# The linear viscosity of its solid plates: the default for every scene until 2026-12-05, when a
-# solid scene's automatic A1 became 0.6 (porous scenes keep 0.2, which its other parts take).
-SOLID_AV_LINEAR = "0.2"
+# The shape the study's porous, sensitivity and answer parts run, and the solid part's points-per-cell,
+# fourth-level and strength series: the simulator's default since 2026-12-05 (bspline2 at cfl 0.3
+# until then), run at its automatic cfl (the study never sets cfl, but in the cfl series). Every
+# part takes the automatic av_linear too (0.6 where every body is solid, 0.2 where one is porous).
+MAIN_SHAPE = "bspline2_domain"
+# MAIN_SHAPE's automatic cfl (mpmshock --keys: 0.6 with bspline2_domain, 0.3 with the other shapes):
+# the default setting of the sensitivity part's cfl series. study.py checks it against the simulator.
+MAIN_CFL = 0.6
+# Every shape the study may run, in the order its tables list them: the main shape first.
+SHAPES = tuple(dict.fromkeys((MAIN_SHAPE, "bspline2_domain", "bspline2", "gimp", "bilinear")))
 
 
 # --- part 1: solid plates -------------------------------------------------------------------------
 
 def solid_series(plan, material):
     """Solid plates at each speed against the exact Rankine-Hugoniot state: every shape function at
-    2 points per cell, bspline2 at the other counts (all shapes at 1000 m/s), a fourth level and a
-    plasticity-on series at 1000 m/s."""
+    2 points per cell, the main shape at the other counts (all shapes at 1000 m/s), a fourth level and
+    a plasticity-on series (both the main shape's) at 1000 m/s. av_linear and cfl are the simulator's
+    automatic values (not set)."""
     series = []
     y1, y2 = plan.solid_band
     for v in plan.solid_speeds:
         exact = hugoniot.solid_shock(v, material)
         t0, t1, t_release = plateau_window(exact, material, plan.solid_height, y2, 4 * plan.solid_cells[0],
                                            plan.solid_end)
-        scene = {"velocity": f"{v:g} m/s", "porosity": "1", "plasticity": "off", "av_linear": SOLID_AV_LINEAR,
-                 "width": _um(plan.solid_width),
+        scene = {"velocity": f"{v:g} m/s", "porosity": "1", "plasticity": "off", "width": _um(plan.solid_width),
                  "target_height": _um(plan.solid_height), "flyer_height": _um(plan.solid_height),
                  "end_time": _ns(t1), "sample_interval": "1 ns", "snapshot_interval": "0",
                  f"region.{REGION}": f"band {_um(y1)} {_um(y2)}"}
         truth = _truth(exact)
         info = dict(velocity=v, exact=exact, t_release=t_release)
         combos = [(shape, 2) for shape in plan.solid_shapes]
-        combos += [("bspline2", ppc) for ppc in plan.solid_ppc if ppc != 2]
+        combos += [(MAIN_SHAPE, ppc) for ppc in plan.solid_ppc if ppc != 2]
         if v == 1000.0:
-            combos += [(shape, ppc) for shape in plan.solid_shapes if shape != "bspline2"
+            combos += [(shape, ppc) for shape in plan.solid_shapes if shape != MAIN_SHAPE
                        for ppc in plan.solid_ppc if ppc != 2]
         for shape, ppc in combos:
             scene_k = dict(scene, shape_function=shape, particles_per_cell=str(ppc))
             series.append(Series("solid", f"v{v:g}_{shape}_ppc{ppc}", scene_k, list(plan.solid_cells), (t0, t1),
                                  exact=truth, info=dict(info, shape=shape, ppc=ppc, plasticity="off")))
         if v == 1000.0 and plan.solid_extra_cell:
-            scene_k = dict(scene, shape_function="bspline2", particles_per_cell="2")
-            series.append(Series("solid", "v1000_bspline2_ppc2_fine", scene_k,
+            scene_k = dict(scene, shape_function=MAIN_SHAPE, particles_per_cell="2")
+            series.append(Series("solid", f"v1000_{MAIN_SHAPE}_ppc2_fine", scene_k,
                                  [*plan.solid_cells, plan.solid_extra_cell], (t0, t1), exact=truth,
-                                 info=dict(info, shape="bspline2", ppc=2, plasticity="off", fine=True)))
+                                 info=dict(info, shape=MAIN_SHAPE, ppc=2, plasticity="off", fine=True)))
         if v == 1000.0 and not plan.quick:
-            scene_k = dict(scene, shape_function="bspline2", particles_per_cell="2", plasticity="on")
-            series.append(Series("solid", "v1000_bspline2_ppc2_plastic", scene_k, list(plan.solid_cells), (t0, t1),
-                                 exact=truth, info=dict(info, shape="bspline2", ppc=2, plasticity="on")))
+            scene_k = dict(scene, shape_function=MAIN_SHAPE, particles_per_cell="2", plasticity="on")
+            series.append(Series("solid", f"v1000_{MAIN_SHAPE}_ppc2_plastic", scene_k, list(plan.solid_cells),
+                                 (t0, t1), exact=truth, info=dict(info, shape=MAIN_SHAPE, ppc=2, plasticity="on")))
     return series
 
 
@@ -216,8 +227,8 @@ def porous_scene(plan, delta, material, velocity=1000.0):
     y1, y2 = 2 * r, 8 * r
     end = math.floor(plan.porous_end_fraction * plan.porous_height / exact.shock_speed / NS + 1e-6) * NS
     t0, t1, t_release = plateau_window(exact, material, plan.porous_height, y2, 4 * plan.porous_cells[0] + 2 * r, end)
-    # bspline2 (at its automatic cfl 0.3), the default until 2026-12-05, named so that the study
-    # measures what it labels; it has not yet been run with the default bspline2_domain.
+    # The main shape, named (at its automatic cfl, not set) so that the study measures what it labels
+    # whatever the simulator's default becomes.
     scene = {"shape_function": MAIN_SHAPE, "velocity": f"{velocity:g} m/s", "porosity": f"{delta:g}", "void_radius": _um(r),
              "width": _um(plan.porous_width_for.get(delta, plan.porous_width)), "target_height": _um(plan.porous_height),
              "flyer_height": _um(plan.porous_height), "end_time": _ns(end), "sample_interval": "1 ns",
@@ -226,15 +237,16 @@ def porous_scene(plan, delta, material, velocity=1000.0):
 
 
 def porous_series(plan, material):
-    """Each porosity with bspline2 over several void layouts; gimp and bilinear at one porosity."""
+    """Each porosity with the main shape over several void layouts; the comparison shapes (bspline2,
+    gimp, bilinear) at one porosity, each at its own automatic cfl."""
     series = []
     for delta in plan.porous_deltas:
         scene, window, truth, info = porous_scene(plan, delta, material)
-        shapes = [("bspline2", plan.porous_seeds[delta])]
+        shapes = [(MAIN_SHAPE, plan.porous_seeds[delta])]
         if delta == plan.porous_shapes_at:
-            shapes += list(plan.porous_shape_seeds.items())
+            shapes += [(shape, seeds) for shape, seeds in plan.porous_shape_seeds.items() if shape != MAIN_SHAPE]
         for shape, seeds in shapes:
-            scene_k = dict(scene) if shape == "bspline2" else dict(scene, shape_function=shape)
+            scene_k = dict(scene, shape_function=shape)
             series.append(Series("porous", f"d{delta:g}_{shape}", scene_k, list(plan.porous_cells), window,
                                  seeds=seeds, exact=truth, info=dict(info, shape=shape)))
     return series
@@ -249,7 +261,7 @@ def sensitivity_series(plan, material):
                   exact=truth)
     series = []
     for param, refine, values, label, default in (("av", "av", plan.sensitivity_av, "av scale", 1.0),
-                                                   ("cfl", "cfl", plan.sensitivity_cfl, "cfl", 0.3),
+                                                   ("cfl", "cfl", plan.sensitivity_cfl, "cfl", MAIN_CFL),
                                                    ("flip", "flip_fraction", plan.sensitivity_flip, "flip_fraction", 1.0)):
         for value in values:
             series.append(Series("sensitivity", f"{param}_{value:g}", scene, [value], window, refine=refine,

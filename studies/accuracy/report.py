@@ -13,7 +13,7 @@ from pathlib import Path
 
 from .figures import figure_windows
 from .formats import cells_text, h_text, md_table
-from .plan import NS, PARTS, ROOT
+from .plan import MAIN_SHAPE, NS, PARTS, ROOT
 
 TEMPLATE = Path(__file__).resolve().with_name("accuracy.md.in")
 
@@ -82,6 +82,7 @@ def choices(report, parts):
         extra = (" " + text("choices.solid.extra_cell", cell=h_text(plan.solid_extra_cell))
                  if plan.solid_extra_cell else "")
         rows.append(text("choices.solid", width=h_text(plan.solid_width), height_mm=f"{plan.solid_height * 1e3:g}",
+                         columns=f"{plan.solid_width / plan.solid_cells[0]:g} cells at {h_text(plan.solid_cells[0])}",
                          end_ns=f"{plan.solid_end / NS:g}", cells=cells_text(plan.solid_cells), extra_cell=extra))
     if "porous" in parts:
         rows.append(text("choices.porous", r=h_text(plan.void_radius), width=h_text(plan.porous_width),
@@ -96,6 +97,38 @@ def choices(report, parts):
                          end_ns=f"{plan.answer_end / NS:g}", cells=cells_text(plan.answer_cells),
                          seeds=plan.answer_seeds))
     return text("choices", rows="\n".join(rows))
+
+
+def _and(words):
+    words = list(words)
+    return ", ".join(words[:-1]) + " and " + words[-1] if len(words) > 1 else "".join(words)
+
+
+def shape_note(report, parts):
+    """The shape function, time step and viscosity every part runs, as the simulator resolves them
+    (automatic cfl and av_linear), and the comparison shapes of the parts that ran."""
+    study, plan, text = report.study, report.plan, report.text
+
+    def resolved(key, shape=MAIN_SHAPE, *more):
+        return f"{study.defaults([f'shape_function={shape}', *more])[key]:g}"
+
+    def compared(shapes):
+        return dict(shapes=_and(shapes), cfls=", ".join(f"{shape} {resolved('cfl', shape)}" for shape in shapes))
+
+    comparisons = ""
+    solid = [shape for shape in plan.solid_shapes if shape != MAIN_SHAPE]
+    if "solid" in parts and solid:
+        other_ppc = [f"{ppc:g}" for ppc in plan.solid_ppc if ppc != 2]   # at 1000 m/s (plan.solid_series)
+        other_ppc = (" " + text("parts.solid_ppc", ppc=_and(other_ppc))
+                     if other_ppc and 1000.0 in plan.solid_speeds else "")
+        comparisons += " " + text("parts.solid_shapes", other_ppc=other_ppc, **compared(solid))
+    porous = [shape for shape in plan.porous_shape_seeds if shape != MAIN_SHAPE]
+    if "porous" in parts and porous and plan.porous_shapes_at in plan.porous_deltas:
+        comparisons += " " + text("parts.porous_shapes", delta=f"{plan.porous_shapes_at:g}", **compared(porous))
+    return text("parts.shapes", main_shape=MAIN_SHAPE, cfl=resolved("cfl"),
+                av_solid=resolved("av_linear", MAIN_SHAPE, "porosity=1"),
+                av_porous=resolved("av_linear", MAIN_SHAPE, f"porosity={plan.sensitivity_delta:g}"),
+                comparisons=comparisons)
 
 
 def run_time(report, parts, elapsed):
@@ -130,7 +163,8 @@ def write_document(report, parts, elapsed, fingerprint):
                    minutes=f"{total_wall / 60:.0f}", out=_display_path(study.out))]
     if plan.quick:
         chunks.append(text("quick"))
-    chunks.append(text("parts", links=", ".join(f"[{p}](#{anchor(text.heading(p))})" for p in parts)))
+    chunks.append(text("parts", shapes=shape_note(report, parts),
+                       links=", ".join(f"[{p}](#{anchor(text.heading(p))})" for p in parts)))
     if report.answer:
         chunks.append(report.answer)
     chunks.append(text("findings", items="\n".join(f"- {f}" for f in report.findings)))

@@ -15,6 +15,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -84,6 +85,7 @@ class Study:
         self.adopted = set()     # run directories copied from another series' run
         self.ran = set()         # run directories this invocation ran
         self.failures = []       # Failure of every series that did not finish
+        self._defaults = {}      # --set overrides -> resolved scene of defaults (Study.defaults)
         self.started = time.monotonic()
 
     def say(self, text):
@@ -93,6 +95,17 @@ class Study:
         """The resolved scene (SI) of a run of `scene` with these --set overrides, as this study's
         binary resolves it."""
         return resolved_scene(scene, overrides, self.binary)
+
+    def defaults(self, overrides=()):
+        """The resolved scene of a scene file that sets nothing but these --set overrides: every
+        other key at its default, automatic keys (cfl, av_linear) resolved as such a run would."""
+        key = tuple(overrides)
+        if key not in self._defaults:
+            with tempfile.TemporaryDirectory(prefix="accuracy-defaults-") as folder:
+                empty = Path(folder) / "defaults.scene"
+                empty.write_text("# every key at its default\n")   # a file of nothing is refused
+                self._defaults[key] = self.resolve(empty, key)
+        return self._defaults[key]
 
     def _args(self, series, directory, scene_path):
         t0, t1 = series.window

@@ -19,12 +19,30 @@ from .formats import (RELATIVE, cells_text, error_text, h_text, md_table, order_
                       unit_value)
 from .measure import (LARGE_RUN, QUANTITIES, band_deviator, exact_order, measure_single, needed_resolution,
                       nice_cell, plateau, study_rate)
-from .plan import NS, PAPER_SCENE, REGION, UM
+from .plan import MAIN_SHAPE, NS, PAPER_SCENE, REGION, SHAPES, UM
 
 
 def _window_text(series):
     t0, t1 = series.window
     return f"{t0 / NS:g}-{t1 / NS:g}"
+
+
+def _resolved(o):
+    """The resolved scene (scene.txt) of an Outcome's first run: what the simulator ran, automatic
+    keys (cfl, av_linear) included."""
+    return Run(o.run_dirs[0][0]).scene
+
+
+def _values_of(outcomes, key):
+    """The values of one resolved key over these Outcomes' runs, as text ('0.6', or '0.2 and 0.6')."""
+    return " and ".join(dict.fromkeys(f"{_resolved(o)[key]:g}" for o in outcomes))
+
+
+def _cfls(outcomes):
+    """Each shape's cfl as run ('bspline2_domain 0.6, bilinear 0.3'), the main shape first."""
+    shapes = sorted({o.series.info["shape"] for o in outcomes}, key=SHAPES.index)
+    return ", ".join(f"{shape} {_values_of([o for o in outcomes if o.series.info['shape'] == shape], 'cfl')}"
+                     for shape in shapes)
 
 
 def _layouts(report, series):
@@ -36,7 +54,7 @@ def _layouts(report, series):
 # --- part 1: solid plates -------------------------------------------------------------------------
 
 def _shape_key(o):
-    order = {"bspline2": 0, "gimp": 1, "bilinear": 2}
+    order = {shape: k for k, shape in enumerate(SHAPES)}   # the main shape first
     return (o.series.info.get("velocity", 0), order.get(o.series.info.get("shape"), 9), o.series.info.get("ppc", 0))
 
 
@@ -57,8 +75,10 @@ def solid_section(report, outcomes):
                       f"{o.series.scene['end_time']} | {_window_text(o.series)} ns | "
                       f"{o.series.info['t_release'] / NS:.0f} ns |")
     chunks = [text("solid", width=h_text(plan.solid_width), height_mm=f"{plan.solid_height * 1e3:g}",
+                   columns=f"{plan.solid_width / standard[0].h[0]:g} cells at {h_text(standard[0].h[0])}",
                    band=standard[0].series.scene["region." + REGION], cells=cells_text(standard[0].h),
-                   speeds="\n".join(speeds))]
+                   speeds="\n".join(speeds), cfls=_cfls(standard),
+                   av_linear=_values_of(standard, "av_linear"))]
     for q in SOLID_PLOTTED:
         chunks.append(text("solid.errors", quantity=q, table=_solid_errors(q, standard)))
     chunks.append(text("solid.orders", figure_h=report.figure("solid_h", figure_solid_h, standard + fine),
@@ -67,7 +87,7 @@ def solid_section(report, outcomes):
     if at:
         chunks.append(text("solid.cost", table=_solid_cost(at)))
     for o in fine:
-        chunks.append(text("solid.fine", table=_fourth_level(o)))
+        chunks.append(text("solid.fine", shape=o.series.info["shape"], table=_fourth_level(o)))
     for o in plastic:
         off = next(x for x in standard if all(x.series.info[key] == o.series.info[key]
                                               for key in ("velocity", "shape", "ppc")))
@@ -75,7 +95,7 @@ def solid_section(report, outcomes):
     _shape_findings(report, standard)
     report.sections.append(chunks)
     report.window_cases += [(f"solid {o.series.info['velocity']:g} m/s", o) for o in outcomes
-                            if o.series.info["shape"] == "bspline2" and o.series.info["ppc"] == 2
+                            if o.series.info["shape"] == MAIN_SHAPE and o.series.info["ppc"] == 2
                             and o.series.info["plasticity"] == "off" and not o.series.info.get("fine")]
 
 
@@ -154,23 +174,25 @@ def _strength(report, o, off):
               "two_thirds_hardened": f"{2 / 3 * y_hard * 1e-6:.0f}",
               "uniaxial_strain": f"{2 / 3 * abs(math.log(J)):.3f}", "von_mises": f"{finest['von_mises'] * 1e-6:.0f}",
               "plastic_strain": f"{finest['plastic_strain']:.3f}"}   # the numbers the strength prose names
-    if finest["von_mises"] < 0.9 * sy0:
-        verdict = report.text("solid.plastic.below_yield", s_yy=f"{-finest['s_yy'] * 1e-6:.0f}", **yields)
-    else:
-        verdict = report.text("solid.plastic.at_yield", **yields)
-    report.find("solid.plastic", h=h_text(o.h[-1]), excess=f"{(rows and float(rows[-1][5])):+.0f}", **yields)
+    where = "below_yield" if finest["von_mises"] < 0.9 * sy0 else "at_yield"
+    verdict = report.text(f"solid.plastic.{where}", s_yy=f"{-finest['s_yy'] * 1e-6:.0f}", **yields)
+    av_linear = _values_of([o], "av_linear")
+    report.find("solid.plastic", shape=o.series.info["shape"], av_linear=av_linear, h=h_text(o.h[-1]),
+                excess=f"{(rows and float(rows[-1][5])):+.0f}", where=report.text(f"finding.solid.plastic.{where}"),
+                **yields)
     res = o.results["macro_normal_stress"]
     table = md_table(["cell", "sigma_n on (GPa)", "sigma_n off (GPa)", "sigma_n on-off (MPa)",
                       "P on-off (MPa)", "(sigma_n - P) on-off (MPa)", "rho on-off (kg/m3)", "T on-off (K)",
                       "-s_yy at the end (MPa)", "von Mises stress at the end (MPa)", "plastic strain"], rows)
-    return report.text("solid.plastic", plastic_modulus=f"{Ep * 1e-6:.0f}", table=table, verdict=verdict,
+    return report.text("solid.plastic", shape=o.series.info["shape"], av_linear=av_linear,
+                       plastic_modulus=f"{Ep * 1e-6:.0f}", table=table, verdict=verdict,
                        limit=f"{res.estimate.extrapolated * 1e-9:.4f}", order=order_text(res.estimate),
                        hydrodynamic=f"{o.series.exact['macro_normal_stress'] * 1e-9:.4f}", **yields)
 
 
 def _shape_findings(report, standard):
     """Per shape at 2 points per cell: the largest error at the finest cell and the orders."""
-    for shape in ("bspline2", "gimp", "bilinear"):
+    for shape in SHAPES:
         group = [o for o in standard if o.series.info["shape"] == shape and o.series.info["ppc"] == 2]
         if not group:
             continue
@@ -193,8 +215,9 @@ def porous_section(report, outcomes):
     the other shape functions."""
     text, plan = report.text, report.plan
     r = plan.void_radius
-    main = sorted((o for o in outcomes if o.series.info["shape"] == "bspline2"), key=lambda o: o.series.info["delta"])
-    shapes = [o for o in outcomes if o.series.info["shape"] != "bspline2"]
+    main = sorted((o for o in outcomes if o.series.info["shape"] == MAIN_SHAPE), key=lambda o: o.series.info["delta"])
+    shapes = sorted((o for o in outcomes if o.series.info["shape"] != MAIN_SHAPE),
+                    key=lambda o: SHAPES.index(o.series.info["shape"]))
     o0 = main[0]
     wider = "".join(" " + text("porous.wider", wide=h_text(w), delta=f"{d:g}", width=h_text(plan.porous_width))
                     for d, w in plan.porous_width_for.items() if d in plan.porous_deltas)
@@ -208,7 +231,8 @@ def porous_section(report, outcomes):
                       f"{o.series.seeds} |")
     chunks = [text("porous", r=h_text(r), cells=cells_text(o0.h), ratios=", ".join(f"1/{r / h:g}" for h in o0.h),
                    width=h_text(plan.porous_width), wider=wider, height=h_text(plan.porous_height),
-                   deltas="\n".join(deltas))]
+                   deltas="\n".join(deltas), main_shape=MAIN_SHAPE, cfl=_values_of(main, "cfl"),
+                   av_linear=_values_of(main, "av_linear"))]
     for o in main:
         chunks.append(text("porous.delta", delta=f"{o.series.info['delta']:g}", layouts=_layouts(report, o.series),
                            table=_porous_convergence(o, r)))
@@ -237,7 +261,7 @@ def porous_section(report, outcomes):
                                                 - o.series.exact["density_mean"], o.series.exact["density_mean"]))
     report.sections.append(chunks)
     report.window_cases += [(f"delta {o.series.info['delta']:g}", o) for o in outcomes
-                            if o.series.info["shape"] == "bspline2"]
+                            if o.series.info["shape"] == MAIN_SHAPE]
 
 
 def _porous_convergence(o, r):
@@ -290,7 +314,8 @@ def _residual_porosity(main):
 
 
 def _porous_shapes(report, main, shapes, r):
-    """gimp and bilinear at one porosity against the bspline2 limit; adds their findings."""
+    """The comparison shapes (bspline2, gimp, bilinear) at one porosity against the main shape's limit;
+    adds their findings."""
     delta = shapes[0].series.info["delta"]
     base = next(o for o in main if o.series.info["delta"] == delta)
     rows = []
@@ -299,7 +324,7 @@ def _porous_shapes(report, main, shapes, r):
             res = o.results[q]
             ref = base.results[q].estimate.extrapolated
             dist = [abs(v - ref) for v in res.values]
-            trend = ("moves away from the bspline2 limit with refinement" if dist[-1] > dist[-2] > dist[0] or
+            trend = (f"moves away from the {MAIN_SHAPE} limit with refinement" if dist[-1] > dist[-2] > dist[0] or
                      dist[-1] > dist[0] * 1.5 else "")
             rows.append([o.series.info["shape"], o.series.seeds, q,
                          *(unit_value(q, v) for v in res.values), unit_value(q, res.estimate.extrapolated),
@@ -310,10 +335,13 @@ def _porous_shapes(report, main, shapes, r):
                 abs(o.results[q].values[0] - base.results[q].estimate.extrapolated)]
         if away:
             report.find("porous.shape", delta=f"{delta:g}", shape=o.series.info["shape"], quantities=", ".join(away),
-                        fine=f"{r / o.h[-1]:g}", coarse=f"{r / o.h[0]:g}")
+                        fine=f"{r / o.h[-1]:g}", coarse=f"{r / o.h[0]:g}", main_shape=MAIN_SHAPE)
     table = md_table(["shape", "layouts", "quantity", *(f"h/r = 1/{r / h:g}" for h in base.h), "own limit",
-                      "order", "finest - bspline2 limit", "trend"], rows)
-    return report.text("porous.shapes", delta=f"{delta:g}", table=table)
+                      "order", f"finest - {MAIN_SHAPE} limit", "trend"], rows)
+    others = [o.series.info["shape"] for o in shapes]
+    return report.text("porous.shapes", delta=f"{delta:g}", table=table, main_shape=MAIN_SHAPE,
+                       shapes=", ".join(others[:-1]) + " and " + others[-1] if len(others) > 1 else others[0],
+                       cfls=_cfls([base] + shapes))
 
 
 # --- part 3: sensitivity ------------------------------------------------------------------------------
@@ -335,9 +363,18 @@ def sensitivity_section(report, outcomes, failures):
     text = report.text
     r = report.plan.void_radius
     h = report.plan.sensitivity_cell
-    delta = (outcomes or failures)[0].series.info["delta"]
+    series = (outcomes or failures)[0].series
+    delta = series.info["delta"]
+    # the defaults each parameter is varied from: the series' scene as the simulator resolves it
+    # without the varied key (automatic cfl and av_linear included)
+    defaults = report.study.resolve(report.study.out / series.part / series.name / "study.scene", series.overrides)
+    cfls = report.plan.sensitivity_cfl
     chunks = [text("sensitivity", delta=f"{delta:g}", h=h_text(h), ratio=f"{r / h:g}",
-                   seeds=report.plan.sensitivity_seeds, finest=h_text(report.plan.porous_cells[-1]))]
+                   seeds=report.plan.sensitivity_seeds, finest=h_text(report.plan.porous_cells[-1]),
+                   shape=defaults["shape_function"], av_linear=f"{defaults['av_linear']:g}",
+                   av_quadratic=f"{defaults['av_quadratic']:g}", cfl=f"{defaults['cfl']:g}",
+                   flip_fraction=f"{defaults['flip_fraction']:g}", min_cfl=f"{min(cfls):g}",
+                   min_cfl_cost=f"{defaults['cfl'] / min(cfls):g}")]
     for param, group in _sensitivity_groups(outcomes).items():
         chunks.append(_parameter(report, param, group, delta, r / h))
     if failures:
@@ -380,7 +417,11 @@ def _parameter(report, param, group, delta, ratio):
         _parameter_finding(report, group, k0, values, delta, ratio)
     table = md_table([info["label"], *(f"{q} ({unit_of(q)})" for q in SENSITIVE),
                       "wall (s, all layouts)", "point-steps (all layouts)", "steps", "energy error (largest)"], rows)
-    scaled = " " + report.text("sensitivity.av_scaled") if param == "av" else ""
+    scaled = ""
+    if param == "av":
+        base = Run(base_o.run_dirs[0][0]).scene
+        scaled = " " + report.text("sensitivity.av_scaled", av_linear=f"{base['av_linear']:g}",
+                                   av_quadratic=f"{base['av_quadratic']:g}")
     return report.text("sensitivity.parameter", label=info["label"], scaled=scaled, table=table)
 
 
@@ -490,7 +531,8 @@ def answer_section(report, o, anchor):
 
     table = _answer_table(o, full_cost, paper["width"], threads)
     full_end = f"{paper['end_time'] / 1e-6:g} us"
-    report.answer = text("the_answer", table=table, width=h_text(plan.answer_width),
+    shape = o.series.scene["shape_function"]
+    report.answer = text("the_answer", table=table, width=h_text(plan.answer_width), shape=shape,
                          height_mm=f"{plan.answer_height * 1e3:g}", end_ns=f"{plan.answer_end / NS:g}",
                          seeds=o.series.seeds, full_width=f"{paper['width'] / 1e-3:g} mm",
                          full_height=f"{paper['target_height'] / 1e-3:g} mm", full_end=full_end, rate=f"{rate:.3g}",
@@ -500,7 +542,8 @@ def answer_section(report, o, anchor):
     full_voids = study.voids_per_body(PAPER_SCENE, plan.answer_check_cells[0])
     anchoring = (text("answer.anchored", factor=f"{anchor_factor:.3g}") if anchor is not None
                  else text("answer.unanchored"))
-    chunks = [text("answer", delta=f"{info['delta']:g}", r=h_text(r), velocity=f"{info['velocity']:g}",
+    chunks = [text("answer", delta=f"{info['delta']:g}", r=h_text(r), velocity=f"{info['velocity']:g}", shape=shape,
+                   cfl=_values_of([o], "cfl"), av_linear=_values_of([o], "av_linear"),
                    width=h_text(plan.answer_width), height_mm=f"{plan.answer_height * 1e3:g}",
                    end_ns=f"{plan.answer_end / NS:g}", cells=cells_text(o.h), seeds=o.series.seeds,
                    band=o.series.scene["region." + REGION], window=_window_text(o.series),
@@ -520,6 +563,7 @@ def answer_section(report, o, anchor):
 def _answer_table(o, full_cost, full_width, threads):
     """Per target error: the cell size, how it was found and its cost in the full geometry."""
     r = o.series.info["void_radius"]
+    shape = o.series.scene["shape_function"]
     targets = [("pressure_mean", t, True) for t in (1, 3, 10)] + \
               [("macro_normal_stress", t, True) for t in (1, 3, 10)] + \
               [("temperature_mean", t, False) for t in (10, 50)]
@@ -532,7 +576,7 @@ def _answer_table(o, full_cost, full_width, threads):
         h_use = h if how == "measured" else nice_cell(h, full_width)
         cost = full_cost(h_use)
         err_text = (f"{100 * err:.2g} %" if relative else f"{err:.2g} K") if how == "measured" else "= target"
-        rows.append([f"{t:g} {'%' if relative else 'K'}", q, f"{h_text(h_use)} (h/r = 1/{r / h_use:.3g})", "bspline2",
+        rows.append([f"{t:g} {'%' if relative else 'K'}", q, f"{h_text(h_use)} (h/r = 1/{r / h_use:.3g})", shape,
                      "2", err_text, how + ("" if how == "measured" else f": h = {h / UM:.2g} um, rounded down to a "
                                                                           "divisor of the width"),
                      f"{cost['points']:.3g}", f"{cost['steps']:.3g}", f"{cost['point_steps']:.2g}",

@@ -5,11 +5,13 @@ docs/accuracy.md with its figures docs/accuracy_*.png.
 
 Parts, run in this order (all four by default):
     solid        solid plates (porosity 1, plasticity off) at 500, 1000, 2000 m/s against the exact
-                 Rankine-Hugoniot state; cell sizes 20, 10, 5 um; bspline2, gimp, bilinear; 1, 2, 3
-                 points per cell; one plasticity-on series
+                 Rankine-Hugoniot state; cell sizes 20, 10, 5 um; the main shape, bspline2, gimp,
+                 bilinear; 1, 2, 3 points per cell; one plasticity-on series
     porous       delta 1.03, 1.1, 1.4 at 1000 m/s, voids of 20 um radius, cells r/2, r/4, r/8, several
-                 void layouts (seeds), against the full-compaction Hugoniot and their own limit
-    sensitivity  delta 1.1 at one cell size: artificial viscosity, cfl and flip_fraction varied
+                 void layouts (seeds), against the full-compaction Hugoniot and their own limit;
+                 bspline2, gimp and bilinear beside the main shape at delta 1.1
+    sensitivity  delta 1.1 at one cell size: artificial viscosity, cfl (0.3 to 0.9) and
+                 flip_fraction varied
     answer       the paper's base case in a reduced column at 20, 10, 5 um: the cell size and
                  core-minutes the full geometry needs for 1, 3, 10 % in pressure, 10 and 50 K in T
 
@@ -18,6 +20,10 @@ series' convergence.csv, convergence.md and cost.png beside them; a finished run
 matches is reused (mpmshock-converge's rule), and a run another series already holds is copied
 instead of run again. The report and figures go to the repository's docs/ for a full study, else
 (with --quick or --only) to DIR/docs, unless --docs says where.
+
+The main shape is MAIN_SHAPE in plan.py: bspline2_domain, the simulator's default shape function,
+at its automatic cfl (0.6); every run takes the automatic av_linear (0.6 where every body is solid,
+0.2 where one is porous). bspline2 at cfl 0.3 was the default until 2026-12-05.
 
 --quick runs a smaller study (fewer speeds, shapes, seeds, coarser cells) as a smoke test; its
 numbers are not the study's.
@@ -57,6 +63,7 @@ def conduct(parts, plan, study, report):
         if porous:
             porous_section(report, porous)
     if "sensitivity" in parts:
+        check_main_cfl(study)
         sensitivity = study.run_all(planning.sensitivity_series(plan, study.material))
         sensitivity_section(report, sensitivity, [f for f in study.failures if f.series.part == "sensitivity"])
     if "answer" in parts:
@@ -69,6 +76,15 @@ def conduct(parts, plan, study, report):
                 overrides, name = planning.anchor_run(o.series, o.h[0])
                 anchor = study.run_single(PAPER_SCENE, overrides, study.out / "answer" / name)
             answer_section(report, o, anchor)
+
+
+def check_main_cfl(study):
+    """The sensitivity part marks plan.MAIN_CFL as the default of its cfl series: a PostError where
+    the simulator's automatic cfl for the main shape is another (a changed default)."""
+    auto = study.defaults([f"shape_function={planning.MAIN_SHAPE}"])["cfl"]
+    if not abs(auto - planning.MAIN_CFL) <= 1e-9:
+        raise PostError(f"the simulator's automatic cfl for {planning.MAIN_SHAPE} is {auto:g}, not "
+                        f"plan.MAIN_CFL = {planning.MAIN_CFL:g} (the sensitivity part's default): update plan.py")
 
 
 def build_parser():
