@@ -183,7 +183,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
       on.push_back(hf.str());
     }
   }
-  if (s.volumetric_smoothing) on.push_back("volumetric smoothing");
+  if (s.volumetric_smoothing == Smoothing::on) on.push_back("volumetric smoothing");
   if (s.effects.spall)
     on.push_back(std::string("spall (") +
                  (s.spall_criterion == SpallCriterion::neighbourhood ? "the neighbourhood's" : "each point's own") +

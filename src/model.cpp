@@ -133,7 +133,7 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m)
         thermal->set_melting(b, melt_curve_of(*m[index_of(b)]), m[index_of(b)]->latent_heat);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;
-  volumetric_smoothing = s.volumetric_smoothing;
+  volumetric_smoothing = s.volumetric_smoothing == Smoothing::on;
   if (s.effects.thermal && s.effects.artificial_viscosity) heat_flux_beta = s.av_heat_flux;
   diffusion_number = s.dimension == 3 ? 0.15 : 0.2;
   if (s.effects.heat_conduction)

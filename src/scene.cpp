@@ -376,10 +376,13 @@ const std::vector<Key>& keys() {
                      "advance material nothing has reached yet (ahead of the fastest signal) in closed form, "
                      "x += v0 dt, leaving it out of the transfers; off: compute it (the same to round-off)",
                      FIELD(skip_unreached)));
-    k.push_back(flag("volumetric_smoothing", "off",
-                     "each point's rate of volume change from the grid's mass-weighted field of it, so the points "
-                     "of a cell compress together and no single point is over-compressed (collapse foci, ringing)",
-                     FIELD(volumetric_smoothing)));
+    k.push_back(choice<Smoothing>(
+        "volumetric_smoothing", {{"auto", Smoothing::automatic}, {"on", Smoothing::on}, {"off", Smoothing::off}}, "auto",
+        "each point's rate of volume change from the grid's mass-weighted field of it, so the points of a cell "
+        "compress together and no single point is over-compressed (collapse foci); auto = on where a body is "
+        "porous, off where every body is solid (it spoils a solid plate's elastic-plastic plateau): "
+        "docs/method.md",
+        FIELD(volumetric_smoothing)));
     k.push_back(quantity("av_linear", D::none, non_negative(), "auto",
                          "linear artificial viscosity coefficient A1; auto = 0.6 where every body is solid (the exact "
                          "elastic-plastic two-wave state behind the shock, tests/test_two_wave.cpp; 0.2 rings it below "
@@ -1308,6 +1311,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   if (std::isnan(scene.target_velocity)) scene.target_velocity = scene.velocity;
   if (std::isnan(scene.flyer_porosity)) scene.flyer_porosity = scene.porosity;
   if (scene.av_linear < 0.0) scene.av_linear = auto_av_linear(scene.every_body_solid());
+  if (scene.volumetric_smoothing == Smoothing::automatic)
+    scene.volumetric_smoothing = auto_volumetric_smoothing(scene.every_body_solid());
   if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.shape_function);
   check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; }, errors);
   errors.throw_if_any();

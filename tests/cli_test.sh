@@ -41,7 +41,7 @@ expect 0 "materials: target the scene's material keys \(2700 kg/m3\), flyer copp
   tiny.scene --check --set porosity=1 --set flyer_material=copper
 expect 0 "window: y 0.3 .. 0.35 mm, [0-9]+ material points of pmma" -- \
   tiny.scene --check --set "window_height=50 um" --set window_material=pmma
-expect 0 "effects: thermal \(energy temperature model\), voids; update" -- tiny.scene --check --set plasticity=off --set artificial_viscosity=off
+expect 0 "effects: thermal \(energy temperature model\), volumetric smoothing, voids; update" -- tiny.scene --check --set plasticity=off --set artificial_viscosity=off
 [ -e tiny_porous_out ] && fail "--check wrote output"
 
 expect 0 "porosity \(from material points\): 1\.19" -- tiny.scene --quiet --set end_time=20ns --set output_dir=run1

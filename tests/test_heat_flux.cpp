@@ -72,11 +72,13 @@ int main() {
   CHECK_NEAR(flux.T, plain.T, 2.0);
   CHECK(flux.energy_error < 1e-12);
 
-  // Porous delta 1.1, voids of 20 um at 5 um cells, 60 ns: the collapse foci.
+  // Porous delta 1.1, voids of 20 um at 5 um cells, 60 ns: the collapse foci, without the volumetric
+  // smoothing a porous scene takes by default (the flux's own effect).
   const std::string porous =
       "velocity = 1000 m/s\nporosity = 1.1\nvoid_radius = 20 um\nwidth = 0.4 mm\ntarget_height = 0.4 mm\n"
       "flyer_height = 0.4 mm\ncell_size = 5 um\nend_time = 60 ns\n";
-  const Outcome foci = run(porous + "av_heat_flux = 0\n"), tamed = run(porous + "av_heat_flux = 10\n");
+  const std::string unsmoothed = porous + "volumetric_smoothing = off\n";
+  const Outcome foci = run(unsmoothed + "av_heat_flux = 0\n"), tamed = run(unsmoothed + "av_heat_flux = 10\n");
   std::printf("porous foci: hottest point %.0f / %.0f K, mass above 5 MJ/kg %.3f / %.3f %%; energy %.1e / %.1e\n",
               foci.T_max, tamed.T_max, 100 * foci.hot_mass, 100 * tamed.hot_mass, foci.energy_error, tamed.energy_error);
   CHECK(foci.finished && tamed.finished);
@@ -84,5 +86,14 @@ int main() {
   CHECK(tamed.T_max < 0.2 * foci.T_max);  // ... and gone with it
   CHECK(tamed.hot_mass < 0.6 * foci.hot_mass);
   CHECK(tamed.energy_error < 1e-12);
+  // The porous defaults, the flux with volumetric smoothing: the hot mass the flux leaves falls again
+  // (measured 2026-12-05: 0.013 % for 0.073 %, the hottest point 1631 K for 1871 K).
+  const Outcome defaults = run(porous);
+  std::printf("porous defaults (with volumetric smoothing): hottest point %.0f K, mass above 5 MJ/kg %.3f %%; energy %.1e\n",
+              defaults.T_max, 100 * defaults.hot_mass, defaults.energy_error);
+  CHECK(defaults.finished);
+  CHECK(defaults.hot_mass < 0.3 * tamed.hot_mass);
+  CHECK(defaults.T_max <= tamed.T_max);
+  CHECK(defaults.energy_error < 1e-12);
   return check::result();
 }

@@ -1,4 +1,4 @@
-// The 2D results stay what they were: four tiny impacts (the default model; bspline2 at cfl 0.3, the
+// The 2D results stay what they were: five tiny impacts (the default model, and before its volumetric smoothing; bspline2 at cfl 0.3, the
 // default until 2026-12-05; every optional effect with gimp and USL; the paper's bilinear cells and
 // temperature) run to their end, and every per-point
 // field of the final state is compared with tests/data/reference_2d.txt, written before 3D was added
@@ -17,7 +17,9 @@
 // bilinear cells makes |tr D| dt reach 0.03, 324 steps to 60 ns; the other two cases' field sums
 // unchanged to 1e-9; written on a build without AVX-512), and when the default became bspline2_domain
 // at cfl 0.6 with max_volume_change 0.02 (2026-12-05: a new "default" case; the old default's state
-// kept bitwise as the case "bspline2", the other two bitwise unchanged).
+// kept bitwise as the case "bspline2", the other two bitwise unchanged), and when a porous scene's
+// volumetric smoothing became automatic (2026-12-05: the new "default" case; the old default's state
+// kept bitwise as "no_smoothing", the other three bitwise unchanged).
 //
 // Bitwise where that is meaningful: floating-point results depend on the compiler and on the
 // instructions it may use (FMA contraction under -march=native), so the reference records the build
@@ -69,16 +71,20 @@ struct Case {
 // Short runs that still see the shock cross voids, the free surfaces and every effect's code path.
 // The cases other than "default" keep max_volume_change at 0.03 (its default until 2026-12-05) and
 // the automatic cfl of their shape (0.3), so their states are the ones recorded before that day.
+// Every case but "default" keeps volumetric smoothing off (the default of a porous scene until
+// 2026-12-05), and "no_smoothing" is the default of that day before it.
 const std::vector<Case> kCases = {
     {"default", {}},
-    {"bspline2", {"shape_function=bspline2", "max_volume_change=0.03"}},  // the default until 2026-12-05
+    {"no_smoothing", {"volumetric_smoothing=off"}},  // the default until volumetric_smoothing = auto
+    {"bspline2", {"shape_function=bspline2", "max_volume_change=0.03", "volumetric_smoothing=off"}},  // the default until 2026-12-05
     {"every_effect",
      {"symmetry=off", "shape_function=gimp", "spall=on", "heat_conduction=on",
       "thermal_softening=on", "hardening_beta=0.5", "taylor_quinney=0.9", "flip_fraction=0.98", "update_scheme=usl",
-      "max_volume_change=0.03"}},
+      "max_volume_change=0.03", "volumetric_smoothing=off"}},
     {"paper_cells",
      {"shape_function=bilinear",
-      "temperature_model=paper", "skip_unreached=off", "flyer_mirror=off", "max_volume_change=0.03"}},
+      "temperature_model=paper", "skip_unreached=off", "flyer_mirror=off", "max_volume_change=0.03",
+      "volumetric_smoothing=off"}},
 };
 
 struct FieldSum {
@@ -155,7 +161,7 @@ int main(int argc, char** argv) {
 
   if (argc == 4 && std::string(argv[2]) == "--write") {
     std::ofstream f(argv[3]);
-    f << "# test_reference_2d: the final state of its four cases, per field: 64-bit hash of the bytes, sum of |x|\n";
+    f << "# test_reference_2d: the final state of its five cases, per field: 64-bit hash of the bytes, sum of |x|\n";
     f << "build " << fingerprint << "\n";
     for (const auto& [key, s] : now) {
       char line[200];

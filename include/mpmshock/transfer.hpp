@@ -41,7 +41,8 @@ inline Mat<D> cauchy_stress(const Particles<D>& pts, std::size_t p) {
   return sigma;
 }
 
-// P2G of mass, momentum and internal force; keeps each point's stencil for the rest of the step.
+// P2G of mass, momentum and internal force; keeps each point's stencil for the rest of the step
+// (Smoothed: volumetric smoothing's pressure pass computed and kept them already, of the same x and F).
 // On MPI ranks the rows shared with a neighbour are summed across the two (halo.hpp).
 template <int D, class Shape, bool Strength, bool Smoothed = false>
 void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g, StencilStore<D>& store,
@@ -51,8 +52,9 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
   stencils.resize(pts.size());
   halo.zero(g.m, g.mv, g.f);
   bins.scatter([&](std::size_t p) {
-    const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
-    stencils[p] = st;
+    // (A local copy, not a read of the kept one: FMA contraction would differ, and results with it.)
+    const auto st = Smoothed ? stencils[p] : Shape::at(pts.x[p], geo, pts.F[p]);
+    if constexpr (!Smoothed) stencils[p] = st;
     const double m = pts.m[p], V = pts.volume(p);
     Vec<D> mv;
     for (int d = 0; d < D; ++d) mv[d] = m * pts.v[p][d];

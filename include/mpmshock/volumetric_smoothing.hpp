@@ -26,8 +26,8 @@
 // kept, and the point update adds (tr L-bar - tr L) / D I to it for F alone (in plane strain a
 // shifted in-plane trace would put a spurious deviator into the zz direction).
 //
-// The passes use the step's stencils and bins (the pressure pass, before P2G, computes the stencils
-// and P2G computes the same ones again: a cost of the option, not yet shared), fold their nodal sums across a symmetry plane (the fields are even in y) and sum
+// The passes use the step's stencils and bins (the pressure pass, before P2G, computes and keeps the
+// stencils, which P2G then reads), fold their nodal sums across a symmetry plane (the fields are even in y) and sum
 // them across the rows MPI ranks share first, as heat conduction does: the same bits on any number
 // of threads and ranks.
 #pragma once
