@@ -20,6 +20,20 @@ SHAPE_COLORS = {"bspline2_domain": "tab:purple", "bspline2": "tab:blue", "gimp":
 PPC_STYLES = {1: ":", 2: "-", 3: "--"}
 
 
+def _porous_style(o):
+    """Colour, line style, markers, label and h/r shift of a porous series: the shape's colour, solid
+    lines and dots for the main shape and the other shapes; where a comparison changes more than the
+    shape (the main shape without volumetric smoothing) the same colour dashed, open squares, and h/r
+    shifted by 4 % so that its error bars stand beside the main shape's."""
+    info = o.series.info
+    comparison = info.get("comparison")
+    color = SHAPE_COLORS[info["shape"]]
+    style = dict(color=color, linestyle="-", marker="o", mfc=color)
+    if comparison and comparison.scene:
+        style.update(linestyle="--", marker="s", mfc="none")
+    return style, info.get("label", info["shape"]), 1.04 if comparison and comparison.scene else 1.0
+
+
 def _figure(nrows, ncols, size=(3.3, 2.6)):
     """A grid of panels and, below it, a strip for the shared legend (fig.legend_strip)."""
     from matplotlib.figure import Figure
@@ -137,11 +151,12 @@ def figure_porous(porous, r, path):
             ax = axes[row, col]
             for o in (o for o in porous if o.series.info["delta"] == delta):
                 res = o.results[q]
-                hr = np.array(o.h) / r
+                style, label, shift = _porous_style(o)
+                color = style["color"]
+                hr = np.array(o.h) / r * shift
                 factor = 1e-9 if unit_of(q) == "GPa" else 1.0
-                color = SHAPE_COLORS[o.series.info["shape"]]
                 ax.errorbar(hr, np.array(res.values) * factor, yerr=np.array(res.standard_errors) * factor,
-                            marker="o", ms=3, color=color, capsize=2, label=f"{o.series.info['shape']} (seed mean)")
+                            ms=3, capsize=2, label=f"{label} (seed mean)", **style)
                 for k, paths in enumerate(o.run_dirs):
                     for path_ in paths:
                         ax.plot(hr[k], plateau(path_, q, o.series.window) * factor, ".", color=color, ms=2, alpha=0.5)
@@ -160,7 +175,7 @@ def figure_porous(porous, r, path):
             ax.set_xlabel("h / r", fontsize=7)
             ax.set_ylabel(unit_of(q), fontsize=7)
             ax.tick_params(labelsize=6)
-    _legend_of_all(fig, axes, 4 if len(deltas) > 1 else 2)
+    _legend_of_all(fig, axes, 4 if len(deltas) > 1 else 1)   # one narrow column: one
     return _save(fig, path)
 
 

@@ -95,12 +95,16 @@ def nice_cell(h, width):
 def study_rate(study, fallback):
     """Median point-steps/s of the study's MAIN_SHAPE runs (the shape whose cost the answer gives) of
     at least LARGE_RUN points, their threads, the share of steps on fewer threads, the number of runs
-    and the quartiles; the answer's finest runs (`fallback`, an Outcome) where there are none."""
+    and the quartiles; the answer's finest runs (`fallback`, an Outcome) where there are none. Porous
+    runs with volumetric smoothing off (a comparison; the answer's runs have it on) do not count."""
     runs = []
     for run_dir, s in study.all_runs().items():
         try:
-            shape = Run(run_dir).scene["shape_function"]
+            scene = Run(run_dir).scene
+            shape = scene["shape_function"]
         except (PostError, KeyError):
+            continue
+        if scene.get("porosity", 1) > 1 and scene.get("volumetric_smoothing") == "off":
             continue
         if shape == MAIN_SHAPE and s.get("material_points", 0) >= LARGE_RUN and s.get("exit_code") == 0:
             runs.append(s)

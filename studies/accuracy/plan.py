@@ -11,7 +11,7 @@ resolution (mpmshock --resolve: mpmshock_post.resolve), and it changes that scen
 """
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from mpmshock_post import converge, hugoniot
@@ -55,6 +55,38 @@ class Series:
         """The --set overrides of every run of the series (before the refined key's)."""
         own = [f"{key}={value}" for key, value in self.scene.items()] if self.base else []
         return [*self.sets, *own]
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """A porous series beside the main shape's at Plan.porous_shapes_at: a shape function and the
+    scene keys it sets beyond the main series' (key -> value text), its label in the report's tables,
+    findings and figures, a slug for its series (and run directory) name, its number of layouts, and
+    the template block (accuracy.md.in) that says what it is, if any."""
+
+    label: str
+    shape: str
+    seeds: int
+    scene: tuple = ()                # ((key, value text), ...) set beyond the main series' keys
+    slug: str = None                 # the series name's tail (d1.1_SLUG); default: the shape
+    note: str = None                 # template block describing it (filled with label, main_shape)
+
+    @classmethod
+    def of_shape(cls, shape, seeds):
+        """Another shape function, at its own automatic cfl, with nothing else changed."""
+        return cls(shape, shape, seeds)
+
+    def with_seeds(self, seeds):
+        return replace(self, seeds=seeds)
+
+    @property
+    def name(self):
+        return self.slug or self.shape
+
+    @property
+    def keys_text(self):
+        """Its extra scene keys as `key = value` text ('' where it is only another shape)."""
+        return ", ".join(f"{key} = {value}" for key, value in self.scene)
 
 
 def scene_text(entries):
@@ -119,10 +151,13 @@ class Plan:
     solid_band: tuple = (100e-6, 400e-6)
     porous_deltas: tuple = (1.03, 1.1, 1.4)
     porous_seeds: dict = field(default_factory=lambda: {1.03: 3, 1.1: 3, 1.4: 2})
-    porous_shapes_at: float = 1.1              # porosity at which the comparison shapes also run
-    # the comparison shapes beside the main one and their layouts (seeds 1, 2, ... as the main shape's):
-    # bspline2 (the default until 2026-12-05) and bilinear (the paper's cells) with 2, gimp with 1
-    porous_shape_seeds: dict = field(default_factory=lambda: {"bspline2": 2, "gimp": 1, "bilinear": 2})
+    porous_shapes_at: float = 1.1              # porosity at which the comparisons also run
+    # the comparisons beside the main shape and their layouts (seeds 1, 2, ... as the main shape's):
+    # the main shape without volumetric smoothing (the porous default until 2026-12-05), bspline2 (the
+    # default shape until 2026-12-05) and bilinear (the paper's cells) with 2, gimp with 1
+    porous_comparisons: tuple = field(default_factory=lambda: (
+        SMOOTHING_OFF, Comparison.of_shape("bspline2", 2), Comparison.of_shape("gimp", 1),
+        Comparison.of_shape("bilinear", 2)))
     void_radius: float = 20e-6
     porous_cells: tuple = (10e-6, 5e-6, 2.5e-6)
     porous_width: float = 200e-6
@@ -152,7 +187,8 @@ class Plan:
             return cls(quick=False)
         return cls(quick=True, solid_speeds=(1000.0,), solid_extra_cell=None,
                    solid_shapes=("bspline2_domain", "bilinear"), solid_ppc=(2,), porous_deltas=(1.1,),
-                   porous_seeds={1.1: 2}, porous_shape_seeds={"bspline2": 1},
+                   porous_seeds={1.1: 2},
+                   porous_comparisons=(SMOOTHING_OFF.with_seeds(1), Comparison.of_shape("bspline2", 1)),
                    porous_cells=(10e-6, 5e-6), sensitivity_cell=10e-6,
                    sensitivity_seeds=1, sensitivity_av=(2.0, 1.0, 0.5), sensitivity_cfl=(0.8, 0.6, 0.3),
                    sensitivity_flip=(1.0, 0.95), answer_cells=(40e-6, 20e-6, 10e-6),
@@ -176,6 +212,10 @@ MAIN_SHAPE = "bspline2_domain"
 MAIN_CFL = 0.6
 # Every shape the study may run, in the order its tables list them: the main shape first.
 SHAPES = tuple(dict.fromkeys((MAIN_SHAPE, "bspline2_domain", "bspline2", "gimp", "bilinear")))
+# The porous comparison of volumetric smoothing: the main shape with it off, the default of porous
+# scenes until 2026-12-05 (since then `auto`, on where a body is porous: every other porous run).
+SMOOTHING_OFF = Comparison(f"{MAIN_SHAPE} (smoothing off)", MAIN_SHAPE, 2, (("volumetric_smoothing", "off"),),
+                           slug=f"{MAIN_SHAPE}_nosmooth", note="porous.smoothing_off")
 
 
 # --- part 1: solid plates -------------------------------------------------------------------------
@@ -237,18 +277,21 @@ def porous_scene(plan, delta, material, velocity=1000.0):
 
 
 def porous_series(plan, material):
-    """Each porosity with the main shape over several void layouts; the comparison shapes (bspline2,
-    gimp, bilinear) at one porosity, each at its own automatic cfl."""
+    """Each porosity with the main shape over several void layouts; the comparisons (plan.porous_comparisons:
+    the main shape without volumetric smoothing, bspline2, gimp, bilinear) at one porosity, each shape at
+    its own automatic cfl. A comparison's info holds its Comparison ('comparison'; None for the main
+    shape's) and its label ('label')."""
     series = []
     for delta in plan.porous_deltas:
         scene, window, truth, info = porous_scene(plan, delta, material)
-        shapes = [(MAIN_SHAPE, plan.porous_seeds[delta])]
+        runs = [(Comparison(MAIN_SHAPE, MAIN_SHAPE, plan.porous_seeds[delta]), None)]
         if delta == plan.porous_shapes_at:
-            shapes += [(shape, seeds) for shape, seeds in plan.porous_shape_seeds.items() if shape != MAIN_SHAPE]
-        for shape, seeds in shapes:
-            scene_k = dict(scene, shape_function=shape)
-            series.append(Series("porous", f"d{delta:g}_{shape}", scene_k, list(plan.porous_cells), window,
-                                 seeds=seeds, exact=truth, info=dict(info, shape=shape)))
+            runs += [(c, c) for c in plan.porous_comparisons]
+        for c, comparison in runs:
+            scene_k = dict(scene, shape_function=c.shape, **dict(c.scene))
+            series.append(Series("porous", f"d{delta:g}_{c.name}", scene_k, list(plan.porous_cells), window,
+                                 seeds=c.seeds, exact=truth,
+                                 info=dict(info, shape=c.shape, label=c.label, comparison=comparison)))
     return series
 
 

@@ -122,12 +122,21 @@ def shape_note(report, parts):
         other_ppc = (" " + text("parts.solid_ppc", ppc=_and(other_ppc))
                      if other_ppc and 1000.0 in plan.solid_speeds else "")
         comparisons += " " + text("parts.solid_shapes", other_ppc=other_ppc, **compared(solid))
-    porous = [shape for shape in plan.porous_shape_seeds if shape != MAIN_SHAPE]
-    if "porous" in parts and porous and plan.porous_shapes_at in plan.porous_deltas:
-        comparisons += " " + text("parts.porous_shapes", delta=f"{plan.porous_shapes_at:g}", **compared(porous))
+    if "porous" in parts and plan.porous_shapes_at in plan.porous_deltas:
+        delta = f"{plan.porous_shapes_at:g}"
+        porous = list(dict.fromkeys(c.shape for c in plan.porous_comparisons if c.shape != MAIN_SHAPE))
+        if porous:
+            comparisons += " " + text("parts.porous_shapes", delta=delta, **compared(porous))
+        for c in plan.porous_comparisons:
+            if c.scene:   # not only another shape: say what else it sets
+                comparisons += " " + text("parts.porous_variant", delta=delta, label=c.label, shape=c.shape,
+                                          keys=c.keys_text)
+    every_solid, one_porous = "porosity=1", f"porosity={plan.sensitivity_delta:g}"
     return text("parts.shapes", main_shape=MAIN_SHAPE, cfl=resolved("cfl"),
-                av_solid=resolved("av_linear", MAIN_SHAPE, "porosity=1"),
-                av_porous=resolved("av_linear", MAIN_SHAPE, f"porosity={plan.sensitivity_delta:g}"),
+                av_solid=resolved("av_linear", MAIN_SHAPE, every_solid),
+                av_porous=resolved("av_linear", MAIN_SHAPE, one_porous),
+                smoothing_solid=study.defaults([f"shape_function={MAIN_SHAPE}", every_solid])["volumetric_smoothing"],
+                smoothing_porous=study.defaults([f"shape_function={MAIN_SHAPE}", one_porous])["volumetric_smoothing"],
                 comparisons=comparisons)
 
 

@@ -212,12 +212,11 @@ def _shape_findings(report, standard):
 
 def porous_section(report, outcomes):
     """Section 2: each porosity's convergence, the resolution it needs, its residual porosity and
-    the other shape functions."""
+    the comparisons (the main shape without volumetric smoothing, the other shape functions)."""
     text, plan = report.text, report.plan
     r = plan.void_radius
-    main = sorted((o for o in outcomes if o.series.info["shape"] == MAIN_SHAPE), key=lambda o: o.series.info["delta"])
-    shapes = sorted((o for o in outcomes if o.series.info["shape"] != MAIN_SHAPE),
-                    key=lambda o: SHAPES.index(o.series.info["shape"]))
+    main = sorted((o for o in outcomes if not o.series.info["comparison"]), key=lambda o: o.series.info["delta"])
+    shapes = [o for o in outcomes if o.series.info["comparison"]]   # in the plan's order
     o0 = main[0]
     wider = "".join(" " + text("porous.wider", wide=h_text(w), delta=f"{d:g}", width=h_text(plan.porous_width))
                     for d, w in plan.porous_width_for.items() if d in plan.porous_deltas)
@@ -225,7 +224,7 @@ def porous_section(report, outcomes):
     for o in main + shapes:
         ex = o.series.info["exact"]
         voids = [s["voids"] / 2 for s in o.summaries[-1]]
-        deltas.append(f"| {o.series.info['delta']:g}{'' if o in main else ' (' + o.series.info['shape'] + ')'} | "
+        deltas.append(f"| {o.series.info['delta']:g}{'' if o in main else ', ' + o.series.info['label']} | "
                       f"{np.mean(voids):.0f} | {ex.density:.5g} | {ex.pressure * 1e-9:.4g} | {ex.temperature:.4g} | "
                       f"{ex.shock_speed:.0f} | {o.series.scene['end_time']} | {_window_text(o.series)} ns | "
                       f"{o.series.seeds} |")
@@ -260,8 +259,7 @@ def porous_section(report, outcomes):
                     points_from_full=error_text("density_mean", o.results["density_mean"].values[-1]
                                                 - o.series.exact["density_mean"], o.series.exact["density_mean"]))
     report.sections.append(chunks)
-    report.window_cases += [(f"delta {o.series.info['delta']:g}", o) for o in outcomes
-                            if o.series.info["shape"] == MAIN_SHAPE]
+    report.window_cases += [(f"delta {o.series.info['delta']:g}", o) for o in main]
 
 
 def _porous_convergence(o, r):
@@ -314,8 +312,8 @@ def _residual_porosity(main):
 
 
 def _porous_shapes(report, main, shapes, r):
-    """The comparison shapes (bspline2, gimp, bilinear) at one porosity against the main shape's limit;
-    adds their findings."""
+    """The comparisons (the main shape without volumetric smoothing, bspline2, gimp, bilinear) at one
+    porosity against the main shape's limit; adds their findings."""
     delta = shapes[0].series.info["delta"]
     base = next(o for o in main if o.series.info["delta"] == delta)
     rows = []
@@ -326,22 +324,50 @@ def _porous_shapes(report, main, shapes, r):
             dist = [abs(v - ref) for v in res.values]
             trend = (f"moves away from the {MAIN_SHAPE} limit with refinement" if dist[-1] > dist[-2] > dist[0] or
                      dist[-1] > dist[0] * 1.5 else "")
-            rows.append([o.series.info["shape"], o.series.seeds, q,
+            se = error_text(q, res.standard_errors[-1], ref, signed=False) if o.series.seeds > 1 else "-"
+            rows.append([o.series.info["label"], o.series.seeds, q,
                          *(unit_value(q, v) for v in res.values), unit_value(q, res.estimate.extrapolated),
-                         order_text(res.estimate), error_text(q, res.values[-1] - ref, ref), trend])
+                         order_text(res.estimate), error_text(q, res.values[-1] - ref, ref), se, trend])
     for o in shapes:
         away = [q for q in ("macro_normal_stress", "pressure_mean", "temperature_mean")
                 if abs(o.results[q].values[-1] - base.results[q].estimate.extrapolated) >
                 abs(o.results[q].values[0] - base.results[q].estimate.extrapolated)]
         if away:
-            report.find("porous.shape", delta=f"{delta:g}", shape=o.series.info["shape"], quantities=", ".join(away),
+            report.find("porous.shape", delta=f"{delta:g}", shape=o.series.info["label"], quantities=", ".join(away),
                         fine=f"{r / o.h[-1]:g}", coarse=f"{r / o.h[0]:g}", main_shape=MAIN_SHAPE)
-    table = md_table(["shape", "layouts", "quantity", *(f"h/r = 1/{r / h:g}" for h in base.h), "own limit",
-                      "order", f"finest - {MAIN_SHAPE} limit", "trend"], rows)
-    others = [o.series.info["shape"] for o in shapes]
+        if o.series.info["comparison"].scene:   # the main shape's scene changed otherwise: the same layouts
+            _variant_finding(report, base, o, r)
+    table = md_table(["series", "layouts", "quantity", *(f"h/r = 1/{r / h:g}" for h in base.h), "own limit",
+                      "order", f"finest - {MAIN_SHAPE} limit", "SE (finest)", "trend"], rows)
+    others = [o.series.info["label"] for o in shapes]
+    notes = "".join(" " + report.text(o.series.info["comparison"].note, label=o.series.info["label"],
+                                      main_shape=MAIN_SHAPE)
+                    for o in shapes if o.series.info["comparison"].note)
     return report.text("porous.shapes", delta=f"{delta:g}", table=table, main_shape=MAIN_SHAPE,
                        shapes=", ".join(others[:-1]) + " and " + others[-1] if len(others) > 1 else others[0],
-                       cfls=_cfls([base] + shapes))
+                       cfls=_cfls([base] + shapes), notes=notes)
+
+
+def _variant_finding(report, base, o, r):
+    """A comparison that changes the main shape's scene (volumetric smoothing off) against the main
+    shape at the finest cell, layout by layout over the layouts both ran: the mean difference and,
+    with two or more layouts, its standard error."""
+    n = min(len(base.run_dirs[-1]), len(o.run_dirs[-1]))
+    parts = []
+    for q in ("macro_normal_stress", "pressure_mean", "macro_density", "temperature_mean"):
+        diffs = [plateau(v, q, o.series.window) - plateau(b, q, base.series.window)
+                 for b, v in zip(base.run_dirs[-1][:n], o.run_dirs[-1][:n])]
+        mean = float(np.mean(diffs))
+        ref = base.results[q].values[-1]
+        text = error_text(q, mean, ref)
+        if n > 1:
+            text += " ± " + error_text(q, float(np.std(diffs, ddof=1)) / math.sqrt(n), ref, signed=False)
+        parts.append(report.text("finding.porous.variant.quantity", quantity=q, difference=text))
+    seeds = ("layouts " if n > 1 else "layout ") + ", ".join(str(1 + s) for s in range(n))
+    report.find("porous.variant", delta=f"{o.series.info['delta']:g}", label=o.series.info["label"],
+                main_shape=MAIN_SHAPE, seeds=seeds,
+                spread=" ± its standard error" if n > 1 else "", fine=f"{r / o.h[-1]:g}",
+                differences="; ".join(parts))
 
 
 # --- part 3: sensitivity ------------------------------------------------------------------------------

@@ -9,7 +9,8 @@ Parts, run in this order (all four by default):
                  bilinear; 1, 2, 3 points per cell; one plasticity-on series
     porous       delta 1.03, 1.1, 1.4 at 1000 m/s, voids of 20 um radius, cells r/2, r/4, r/8, several
                  void layouts (seeds), against the full-compaction Hugoniot and their own limit;
-                 bspline2, gimp and bilinear beside the main shape at delta 1.1
+                 bspline2, gimp, bilinear and the main shape with volumetric_smoothing = off
+                 beside the main shape at delta 1.1
     sensitivity  delta 1.1 at one cell size: artificial viscosity, cfl (0.3 to 0.9) and
                  flip_fraction varied
     answer       the paper's base case in a reduced column at 20, 10, 5 um: the cell size and
@@ -23,7 +24,9 @@ instead of run again. The report and figures go to the repository's docs/ for a 
 
 The main shape is MAIN_SHAPE in plan.py: bspline2_domain, the simulator's default shape function,
 at its automatic cfl (0.6); every run takes the automatic av_linear (0.6 where every body is solid,
-0.2 where one is porous). bspline2 at cfl 0.3 was the default until 2026-12-05.
+0.2 where one is porous) and the automatic volumetric_smoothing (on where a body is porous) but in
+one porous comparison. bspline2 at cfl 0.3, with volumetric smoothing off, was the default until
+2026-12-05.
 
 --quick runs a smaller study (fewer speeds, shapes, seeds, coarser cells) as a smoke test; its
 numbers are not the study's.

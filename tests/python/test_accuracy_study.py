@@ -69,6 +69,27 @@ def test_plateau_window_ends_before_the_release():
         plan.plateau_window(state, material, 0.5e-3, 400e-6, 80e-6, 200e-9)
 
 
+def test_porous_comparisons_include_the_main_shape_without_smoothing():
+    """The main shape with volumetric_smoothing = off (the porous default until 2026-12-05) runs beside
+    the comparison shapes at delta 1.1, at the main shape's cells, with 2 layouts (1 with --quick)."""
+    material = hugoniot.Material(2700.0, 5350.0, 1.34, 1.96, 880.0, 300.0)
+    for quick, seeds in ((False, 2), (True, 1)):
+        p = plan.Plan.make(quick)
+        series = {s.name: s for s in plan.porous_series(p, material)}
+        main, off = series[f"d1.1_{plan.MAIN_SHAPE}"], series[f"d1.1_{plan.MAIN_SHAPE}_nosmooth"]
+        assert off.scene == dict(main.scene, volumetric_smoothing="off")
+        assert "volumetric_smoothing" not in main.scene and off.values == main.values == list(p.porous_cells)
+        assert off.seeds == seeds and off.window == main.window
+        assert main.info["comparison"] is None and off.info["comparison"].note == "porous.smoothing_off"
+        assert off.info["label"] == f"{plan.MAIN_SHAPE} (smoothing off)" and off.info["shape"] == plan.MAIN_SHAPE
+        others = {s.info["shape"] for s in series.values() if s.info["comparison"] and not s.info["comparison"].scene}
+        assert others == ({"bspline2"} if quick else {"bspline2", "gimp", "bilinear"})
+    assert plan.Plan.make(False).porous_cells == (10e-6, 5e-6, 2.5e-6)
+    note = report.Prose()("porous.smoothing_off", label="x (smoothing off)", main_shape=plan.MAIN_SHAPE)
+    assert "`volumetric_smoothing = off`" in note and "2026-12-05" in note
+    assert '"Volumetric smoothing where a body is porous"' in note and "(method.md)" in note
+
+
 def test_template_fills_blocks_and_names_the_parts():
     prose = report.Prose()
     layouts = prose("layouts", count=2, plural="s", seeds="1, 2")
