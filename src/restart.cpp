@@ -39,6 +39,9 @@ std::vector<std::string> with_old_defaults(const std::string& scene_text, std::v
   if (!scene_sets(scene_text, "spall_criterion")) overrides.push_back("spall_criterion=point");
   // Written before the time step had a volume limit: go on without one (1e9 never binds).
   if (!scene_sets(scene_text, "max_volume_change")) overrides.push_back("max_volume_change=1e9");
+  // Written before volumetric smoothing existed (2026-12-03) ran without it; its default is now
+  // on for a porous scene (auto), so such a run goes on without it.
+  if (!scene_sets(scene_text, "volumetric_smoothing")) overrides.push_back("volumetric_smoothing=off");
   // Written before the Steinberg-Guinan constants were each material's (2026-12-05): the bare keys
   // were every body's, so a named material a body used softened by them; it goes on so.
   std::vector<std::string> done;  // the named materials given them

@@ -215,6 +215,13 @@ int main() {
     // One written since keeps its materials' own.
     const std::string new_run = old_run + "material.copper.melt_temperature = 1790 K\n";
     CHECK(parse_scene(new_run, "new.scene", with_old_defaults(new_run, {})).material_of(Body::flyer).melt_temperature == 1790.0);
+    // A porous run written before volumetric smoothing existed ran without it, and goes on so; one
+    // written since keeps what its scene says (auto resolves to on for a porous scene).
+    const std::string porous_run = "porosity = 1.2\n";
+    CHECK(parse_scene(porous_run, "old.scene").volumetric_smoothing == Smoothing::on);
+    CHECK(parse_scene(porous_run, "old.scene", with_old_defaults(porous_run, {})).volumetric_smoothing == Smoothing::off);
+    const std::string smoothed_run = porous_run + "volumetric_smoothing = on\n";
+    CHECK(parse_scene(smoothed_run, "new.scene", with_old_defaults(smoothed_run, {})).volumetric_smoothing == Smoothing::on);
   }
   return check::result();
 }

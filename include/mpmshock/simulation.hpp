@@ -160,7 +160,7 @@ class Simulation {
   Particles<D> points_;
   Grid<D> grid_;
   StripBins bins_;
-  StencilStore<D> stencils_;  // the step's shape weights, computed once by P2G
+  StencilStore<D> stencils_;  // the step's shape weights, computed once (by P2G, or by smoothing's pressure pass)
   Kernels<D> kernels_;
   // The step effects the scene calls for (simulation.cpp: effects_for), each slot's in the order made.
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;

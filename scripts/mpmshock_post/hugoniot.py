@@ -74,9 +74,15 @@ def default_material(binary=None):
 
 # --- the equation of state (include/mpmshock/eos.hpp) -----------------------------------------------
 
-def limiting_compression(material):
-    """Smallest J the Us-up Hugoniot reaches: P_H diverges at eta = 1 - J = 1/s."""
+def pole(material):
+    """The Us-up Hugoniot's pole: P_H diverges at eta = 1 - J = 1/s."""
     return 1.0 - 1.0 / material.hugoniot_slope
+
+
+def limiting_compression(material):
+    """The smallest J the simulator admits (eos.hpp): 2 % of the way from the pole toward J = 1."""
+    J_pole = pole(material)
+    return J_pole + 0.02 * (1.0 - J_pole)
 
 
 def hugoniot_pressure(J, material):
@@ -102,14 +108,13 @@ def mie_gruneisen_pressure(J, E, material):
 class HugoniotTemperature:
     """T_H(J) tabulated as src/temperature.cpp does: the Walsh-Christian equation in J,
     dT_H/dJ = c0^2 s (1 - J)^2 / (c_v [(s - 1) - s J]^3) - gamma0 T_H,  T_H(1) = T0,
-    integrated by RK4 from J = 1 down to J_min, 2 % short of the pole at the limiting compression."""
+    integrated by RK4 from J = 1 down to J_min, the limiting compression, 2 % short of the pole."""
 
     SUBSTEPS = 8
 
     def __init__(self, material, intervals=4096):
         self.material = material
-        J_limit = limiting_compression(material)
-        self.J_min = J_limit + 0.02 * (1.0 - J_limit)
+        self.J_min = limiting_compression(material)
         self.dJ = (1.0 - self.J_min) / intervals
         self.table = self._integrate(intervals)
 
