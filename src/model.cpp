@@ -34,18 +34,6 @@ ThermalSoftening softening_of(const Material& mat) {
   return soft;
 }
 
-StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
-  if (!s.effects.plasticity) return NoStrength{};
-  if (mat.strength_model == StrengthModel::johnson_cook) return JohnsonCook(mat);  // isotropic, its own softening (scene.cpp)
-  const bool isotropic = mat.hardening_beta == 1.0 && !back_stress;
-  if (s.effects.thermal_softening) {
-    if (isotropic) return VonMises<false, true>(mat, softening_of(mat));
-    return VonMises<true, true>(mat, softening_of(mat));
-  }
-  if (isotropic) return VonMises<false>(mat);
-  return VonMises<true>(mat);
-}
-
 EquationOfStateLaw equation_of_state_of(const Material& mat) {
   if (mat.equation_of_state == EquationOfStateModel::tillotson) return Tillotson(mat);
   return MieGruneisen(mat);
@@ -76,12 +64,27 @@ std::array<EquationOfState, kBodies> equations_of_state(const std::array<const M
   return eos;
 }
 
-}  // namespace
+// The strength law a scene calls for in a material; `back_stress`: the kinematic form even for
+// isotropic hardening (when another body needs it, so that the bodies' laws are one type).
+StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
+  if (!s.effects.plasticity) return NoStrength{};
+  if (mat.strength_model == StrengthModel::johnson_cook) return JohnsonCook(mat);  // isotropic, its own softening (scene.cpp)
+  const bool isotropic = mat.hardening_beta == 1.0 && !back_stress;
+  if (s.effects.thermal_softening) {
+    if (isotropic) return VonMises<false, true>(mat, softening_of(mat));
+    return VonMises<true, true>(mat, softening_of(mat));
+  }
+  if (isotropic) return VonMises<false>(mat);
+  return VonMises<true>(mat);
+}
 
+// Whether any body's material hardens kinematically (hardening_beta < 1): then all store a back stress.
 bool kinematic_hardening(const Scene& s) {
   const auto m = body_materials(s);
   return std::any_of(m.begin(), m.end(), [](const Material* b) { return b->hardening_beta != 1.0; });
 }
+
+}  // namespace
 
 std::array<StrengthLaw, kBodies> strength_laws(const Scene& s) {
   const auto m = body_materials(s);

@@ -216,7 +216,7 @@ StepStatus Simulation<D>::step(double dt) {
   const bool musl = model_.scheme == UpdateScheme::musl;
   StepContext<D> c{points_, reached, bins_, grid_, stencils_, halo_, plane_, bins_.rows(), dt};
   auto run = [&](StepSlot slot, void (StepEffect<D>::*act)(StepContext<D>&)) {
-    for (StepEffect<D>* e : slot_effects_[static_cast<std::size_t>(slot)]) (e->*act)(c);
+    for (StepEffect<D>* e : in_slot(slot)) (e->*act)(c);
   };
   grid_.reset(c.rows);                                                 // reset grid
   run(StepSlot::before_to_grid, &StepEffect<D>::before_to_grid);       //   (smoothing: (P + q)-bar_p)
@@ -238,7 +238,7 @@ StepStatus Simulation<D>::step(double dt) {
   run(StepSlot::after_move, &StepEffect<D>::after_move);               //   (smoothing: tr L_p, work_p)
   StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt, c.volume_rate);  // E, F, s, P, q
   StepStatus effect;  // the effects' checks (spall's neighbourhood opens points), agreed with the step's
-  for (StepEffect<D>* e : slot_effects_[static_cast<std::size_t>(StepSlot::after_point_update)])
+  for (StepEffect<D>* e : in_slot(StepSlot::after_point_update))
     if (effect = with_id(e->after_point_update(c)); !effect.ok()) break;
   const StepStatus failed = agree_on(update, left, effect);            // the ranks' maxima and failures
   clock_.time += dt;
@@ -344,7 +344,7 @@ StepStatus Simulation<D>::with_id(StepStatus s) const {
 
 template <int D>
 StepStatus Simulation<D>::check_at_sample() {
-  for (StepEffect<D>* e : slot_effects_[static_cast<std::size_t>(StepSlot::at_sample)])
+  for (StepEffect<D>* e : in_slot(StepSlot::at_sample))
     if (const StepStatus s = agree(with_id(e->at_sample(points_))); !s.ok()) return s;
   return {};
 }

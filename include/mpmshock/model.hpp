@@ -40,10 +40,6 @@ using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
 using FailureLaw = std::variant<NoFailure, Spall>;
 using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape, QuadraticBSplineDomainShape>;
 
-// The strength law a scene calls for in a material, and what it stores per point; `back_stress`:
-// the kinematic form even for isotropic hardening (when the other body needs it, so that both
-// bodies' laws are one type).
-StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress = false);
 // Each body's strength law, by Body: strength_of each body's material, of one type (MixedStrength
 // where the bodies' laws differ).
 std::array<StrengthLaw, kBodies> strength_laws(const Scene& s);
@@ -51,8 +47,6 @@ std::array<StrengthLaw, kBodies> strength_laws(const Scene& s);
 const JohnsonCook* johnson_cook_of(const StrengthLaw& law);
 // A material's equation of state.
 EquationOfStateLaw equation_of_state_of(const Material& mat);
-// Whether either body's material hardens kinematically (hardening_beta < 1): then both store a back stress.
-bool kinematic_hardening(const Scene& s);
 // The Lindemann melt curve of a material, and its Steinberg-Guinan softening (thermal_softening.hpp).
 MeltCurve melt_curve_of(const Material& mat);
 ThermalSoftening softening_of(const Material& mat);

@@ -165,6 +165,7 @@ class Simulation {
   // The step effects the scene calls for (simulation.cpp: effects_for), each slot's in the order made.
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;
   std::array<std::vector<StepEffect<D>*>, kStepSlots> slot_effects_;
+  const std::vector<StepEffect<D>*>& in_slot(StepSlot slot) const { return slot_effects_[static_cast<std::size_t>(slot)]; }
   const SymmetryPlane<D>* plane_ = nullptr;  // the symmetry plane among effects_ (symmetry = on), else null
   UnreachedMaterial<D> unreached_;
   Clock clock_;

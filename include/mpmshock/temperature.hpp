@@ -36,7 +36,8 @@ class HugoniotTemperature {
  public:
   HugoniotTemperature() = default;
   // Tabulates T_H on J in [J_min, 1] with `intervals` equal steps, J_min the equation of state's
-  // limiting compression (2 % short of the Us-up pole 1 - 1/s, where T_H diverges: eos.hpp). For J >= 1 (tension) the reference curve is the linear branch
+  // limiting compression (2 % short of the Us-up pole 1 - 1/s, where T_H diverges: eos.hpp). For
+  // J >= 1 (tension) the reference curve is the linear branch
   // P_H = rho0 c0^2 eta, on which the Walsh-Christian equation has no shock-heating term (s = 0):
   // T_H = T0 exp(gamma0 (1 - J)), the isentrope, continuous with its slope at J = 1.
   // `report_paper`: outputs also carry the paper model's temperature (scene key paper_temperature).
