@@ -350,7 +350,9 @@ const std::vector<Key>& keys() {
                          FIELD(end_time)));
     k.push_back(quantity("cfl", D::none, open(0.0, 1.0), "auto",
                          "time step = cfl h / (fastest signal: sound speed + viscous speed + particle speed); "
-                         "auto = 0.6 with bspline2_domain, 0.3 with the other shapes (larger steps cost accuracy: docs/stability.md)",
+                         "auto = 0.6 with bspline2_domain (0.8 where artificial viscosity is on with av_linear >= 0.6, as in every "
+                         "solid scene: its viscous speed already slows the step), 0.3 with the other shapes (larger steps cost "
+                         "accuracy: docs/stability.md)",
                          FIELD(cfl)));
     k.push_back(quantity("max_volume_change", D::none, Range{0.0, kInf, true, true}, "0.02",
                          "the time step is also at most this over the fastest rate of volume change |tr D| a "
@@ -808,7 +810,7 @@ std::string override_key(const std::string& arg) { return trim(arg.substr(0, arg
 
 std::vector<std::string> scene_warnings(const Scene& s) {
   std::vector<std::string> out;
-  const double cfl_auto = auto_cfl(s.shape_function);
+  const double cfl_auto = auto_cfl(s.shape_function, strongly_viscous(s));
   if (s.cfl > cfl_auto)
     out.push_back("cfl " + format_number(s.cfl) + " > " + format_number(cfl_auto) + " (the automatic value of "
                   "this shape_function): fewer steps, larger errors (an isentropic release heats about twice "
@@ -1313,7 +1315,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   if (scene.av_linear < 0.0) scene.av_linear = auto_av_linear(scene.every_body_solid());
   if (scene.volumetric_smoothing == Smoothing::automatic)
     scene.volumetric_smoothing = auto_volumetric_smoothing(scene.every_body_solid());
-  if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.shape_function);
+  if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.shape_function, strongly_viscous(scene));
   check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; }, errors);
   errors.throw_if_any();
   if (scene.symmetry == Symmetry::automatic)

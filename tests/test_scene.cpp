@@ -122,13 +122,18 @@ int main() {
     CHECK(parse_scene("dimension = 3\ncfl = 0.25\n", "d.scene").cfl == 0.25);
     CHECK(parse_scene("dimension = 3\n", "d.scene", {"cfl=auto"}).cfl == kCflDomain);
     // The default A1 by the bodies (porous: the default porosity 1.03, or either body's); the
-    // automatic step does not follow it.
+    // automatic step follows it (below).
     CHECK(parse_scene("", "d.scene").av_linear == kAvLinearPorous);
     CHECK(parse_scene("porosity = 1\nflyer_porosity = 1.1\n", "d.scene").av_linear == kAvLinearPorous);
     CHECK(parse_scene("porosity = 1.1\nflyer_porosity = 1\n", "d.scene").av_linear == kAvLinearPorous);
     const Scene solid = parse_scene("porosity = 1\n", "d.scene");
     CHECK(solid.av_linear == kAvLinearSolid && kAvLinearSolid == 0.6 && kAvLinearPorous == 0.2);
-    CHECK(solid.cfl == kCflDomain);
+    // A solid scene's A1 = 0.6 takes the larger automatic step; one set below 0.6, or no viscosity, does not.
+    CHECK(solid.cfl == kCflDomainViscous && kCflDomainViscous == 0.8);
+    CHECK(parse_scene("porosity = 1\nav_linear = 0.3\n", "d.scene").cfl == kCflDomain);
+    CHECK(parse_scene("porosity = 1\nartificial_viscosity = off\n", "d.scene").cfl == kCflDomain);
+    CHECK(parse_scene("av_linear = 0.75\n", "d.scene").cfl == kCflDomainViscous);  // porous, by its A1
+    CHECK(parse_scene("porosity = 1\nshape_function = bspline2\n", "d.scene").cfl == kCfl);
     CHECK(parse_scene("porosity = 1\n", "d.scene", {"av_linear=auto"}).av_linear == kAvLinearSolid);
     CHECK(parse_scene("porosity = 1\nav_linear = 0.3\n", "d.scene").av_linear == 0.3);
     CHECK(resolved_scene(solid).find("av_linear = 0.6\n") != std::string::npos);  // what a restart reads back

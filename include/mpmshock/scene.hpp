@@ -102,7 +102,7 @@ struct Scene {
   std::int64_t particles_per_cell = 2;
   double grid_margin = -1.0;  // < 0: automatic (see derived_grid_margin)
   double end_time = 1e-6;
-  double cfl = -1.0;  // < 0 until parsed: automatic, auto_cfl(shape_function)
+  double cfl = -1.0;  // < 0 until parsed: automatic, auto_cfl(shape_function, strongly_viscous(*this))
   // The largest relative volume change |tr D| dt of a point in one step: the step is also at most
   // this over the fastest rate of volume change (a collapsing void's jet).
   double max_volume_change = 0.02;
@@ -213,11 +213,21 @@ constexpr Smoothing auto_volumetric_smoothing(bool every_body_solid) {
 // in pressure than at 0.3); with the others 0.3 (0.2 until 2026-12-04, when 3D jetting had stopped
 // at 0.25).
 constexpr double kCfl = 0.3, kCflDomain = 0.6;
-// They do not follow A1: a solid scene's 0.6 takes 1.34x the steps of A1 = 0.2 (the viscous signal
-// speed (A1 + sqrt(A1^2 + 1)) c in the step), and a step scaled to undo that (cfl 0.87, the same
-// Courant number of sound in compressing material) keeps the plateaus but raises the points' work
-// mismatch from 0.31 % to 0.55 % of E (1000 m/s, 10 um; test_hugoniot bounds it at 0.5 %).
-constexpr double auto_cfl(ShapeFunction shape) { return shape == ShapeFunction::bspline2_domain ? kCflDomain : kCfl; }
+// With the domain B-spline and a linear viscosity of at least a solid scene's A1 = 0.6 (so every
+// solid scene by default), 0.8 (since 2026-12-06). The step counts the viscous speed
+// (A1 + sqrt(A1^2 + 1)) c of a compressing point, 1.77 c at A1 = 0.6 for 1.22 c at 0.2, so 0.8
+// gives compressing material the sound Courant number 0.45, below the 0.49 of the porous default
+// (0.6 at A1 = 0.2), where 0.6 gave 0.34: the speed scene takes 838 steps for 1112 with its plateau
+// unchanged (sigma_n 18113.3 MPa for 18112.6, the two-wave exact 18112.1; T 490.70 K for 490.67),
+// and an isentropic release with the viscosity on heats 131 K at 0.8 for 134 K at 0.6 (the
+// viscosity's heating, not the step's; docs/stability.md).
+constexpr double kCflDomainViscous = 0.8;
+constexpr double auto_cfl(ShapeFunction shape, bool strongly_viscous = false) {
+  if (shape != ShapeFunction::bspline2_domain) return kCfl;
+  return strongly_viscous ? kCflDomainViscous : kCflDomain;
+}
+// Whether a scene's viscosity is strong enough for the larger automatic step: on, with A1 >= 0.6.
+inline bool strongly_viscous(const Scene& s) { return s.effects.artificial_viscosity && s.av_linear >= kAvLinearSolid; }
 
 // A scene error names the file, the line and the key: "scene.cfg:12: key 'porosity': ...".
 class SceneError : public std::runtime_error {

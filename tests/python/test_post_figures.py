@@ -120,10 +120,10 @@ def test_compare_has_a_title(runs):
     assert "B800" in title and "$v$=1000 m/s" in title, f"compare title: '{title}'"
     assert "$r$" not in title, "the void radius is not shared by a solid run"
     legend = [t.get_text() for t in fig.axes[-1].get_legend().get_texts()]
-    # the automatic volumetric smoothing and A1 differ too: on and 0.2 for a porous scene, off and 0.6
-    # for a solid one
-    assert legend == [r"$\delta$=1.2, volumetric_smoothing=on, av_linear=0.2",
-                      r"$\delta$=1, volumetric_smoothing=off, av_linear=0.6"], legend
+    # the automatic cfl, volumetric smoothing and A1 differ too: 0.6, on and 0.2 for a porous scene,
+    # 0.8, off and 0.6 for a solid one (the legend names three and counts the rest)
+    assert legend == [r"$\delta$=1.2, cfl=0.6, volumetric_smoothing=on (+1 more)",
+                      r"$\delta$=1, cfl=0.8, volumetric_smoothing=off (+1 more)"], legend
     fig = figure("compare", runs["porous"], runs["solid"], "--title", "mine")
     assert fig._suptitle.get_text() == "mine"
 
