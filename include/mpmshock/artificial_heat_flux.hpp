@@ -84,14 +84,18 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
     bins.scatter([&](std::size_t p) {
       const auto b = static_cast<std::size_t>(pts.body[p]);
       T[p] = thermal.energy_temperature(pts, p);
-      const double alpha = flux.beta * flux.cell_size * pts.q[p] / (pts.density(p) * flux.sound_speed[b]);
-      const double r = -std::expm1(-alpha * pi2_dt_over_h2);
+      // Most points do not compress (q = 0): their rate is 0 exactly, and adding N * 0 to a nodal
+      // rate changes no bit, so they add their temperature (and capacity) alone.
+      const double q = pts.q[p];
+      const double alpha = q == 0.0 ? 0.0 : flux.beta * flux.cell_size * q / (pts.density(p) * flux.sound_speed[b]);
+      const double r = alpha == 0.0 ? 0.0 : -std::expm1(-alpha * pi2_dt_over_h2);
       // A point in a bad state (a NaN the step will report) gives its nodes nothing, so the report
       // names it and not its neighbours.
       if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
       const double C = several ? pts.m[p] * capacity[b] : pts.m[p], Cr = C * r, CT = C * T[p];
+      const bool rates = r > 0.0;
       for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
-        flux.node_rate[i] += N * Cr;
+        if (rates) flux.node_rate[i] += N * Cr;
         flux.node_temperature[i] += N * CT;
         if constexpr (several) flux.node_capacity[i] += N * C;
       });
