@@ -69,6 +69,9 @@ std::string describe_result(const RunResult& r) {
   if (r.steps_with_fewer_threads > 0)
     out << " (fewer for " << r.steps_with_fewer_threads << " steps, where that measured faster: a busy machine)";
   if (r.ranks > 1) out << "; the largest rank's work is " << r.imbalance << " x the mean";
+  if (r.step_share < 0.9)
+    out << "\nsteps: on average " << r.step_share << " of the step cfl allows, cut to land on sample or snapshot times"
+        << " (an output interval shorter than the step sets it)";
   out << "\n";
   out << "material points: " << r.points;
   if (r.symmetry) out << " simulated (the target; symmetry = on: the flyer is its mirror image, " << 2 * r.points

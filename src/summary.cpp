@@ -46,6 +46,7 @@ void write_summary_json(const fs::path& path, const RunResult& r) {
   j["point_steps_per_second"] = number(r.point_steps_per_second);
   j["threads"] = r.threads;
   j["steps_with_fewer_threads"] = r.steps_with_fewer_threads;
+  j["step_share"] = number(r.step_share);
   j["mass_error"] = number(r.mass_error);
   j["momentum_error"] = number(r.momentum_error);
   j["energy_error"] = number(r.energy_error);

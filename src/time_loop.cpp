@@ -78,8 +78,12 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
   const auto wall_start = WallClock::now();
   StepStatus status;
   bool failed_at_sample = false;  // the failing check ran after the sample was written
+  double stable_sum = 0.0, dt_sum = 0.0;  // for step_share
   while (sim.time() < end_time * (1.0 - 1e-12)) {
-    const double dt = landing_step(sim.stable_time_step(), next_event_time(sch, scene, end_time) - sim.time());
+    const double stable = sim.stable_time_step();
+    const double dt = landing_step(stable, next_event_time(sch, scene, end_time) - sim.time());
+    stable_sum += stable;
+    dt_sum += dt;
     if (!options.fixed_threads) omp_set_num_threads(threads.threads());
     const auto step_start = WallClock::now();
     status = sim.step(dt);
@@ -116,6 +120,7 @@ RunResult advance(const Scene& scene, Simulation<D>& sim, RunState& run, Outputs
     result.imbalance = sim.imbalance();
   }
   result.steps_with_fewer_threads = threads.steps_below_max();
+  if (stable_sum > 0.0) result.step_share = dt_sum / stable_sum;
   result.wall_seconds = std::chrono::duration<double>(WallClock::now() - wall_start).count();
 
   if (!status.ok()) {

@@ -44,6 +44,9 @@ struct RunResult {
   double mpi_seconds = 0.0;                  // MPI: the most wall time a rank spent in MPI calls, waits included
   double mpi_seconds_least = 0.0;            // MPI: the least (about the cost of communicating itself)
   std::int64_t steps_with_fewer_threads = 0;  // steps the thread tuner ran with fewer (thread_tuner.hpp)
+  // The steps' mean length over the mean step cfl allowed: 1 but for the steps cut to land on an
+  // output time, well below 1 where the sample or snapshot interval is shorter than the step.
+  double step_share = 1.0;
   double mass_error = 0.0, momentum_error = 0.0, energy_error = 0.0;  // relative, since t = 0
   double porosity = 1.0;                                             // from the material points
   std::size_t voids = 0;

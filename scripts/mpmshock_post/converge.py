@@ -319,6 +319,7 @@ class LevelCost:
     points: float
     steps: float
     wall_seconds: float
+    step_share: float = 1.0   # the least over the level's runs (summary.json; 1 for runs older than it)
 
 
 @dataclass
@@ -341,7 +342,26 @@ def level_cost(level):
     return LevelCost(cell_size=float(scene["cell_size"]),
                      points=float(np.mean([s["material_points"] for s in summaries])),
                      steps=float(np.mean([s["steps"] for s in summaries])),
-                     wall_seconds=float(sum(s["wall_seconds"] for s in summaries)))
+                     wall_seconds=float(sum(s["wall_seconds"] for s in summaries)),
+                     step_share=float(min(s.get("step_share", 1.0) for s in summaries)))
+
+
+# Steps cut to land on output times shorten a level's mean step (summary.json step_share); where the
+# levels' shares differ by more than this factor, their Courant numbers differ too.
+STEP_SHARE_SPREAD = 1.1
+
+
+def step_share_warnings(costs):
+    """A line when the levels' steps were cut to land on output times by different shares: their
+    Courant numbers then differ, so the sequence is not a refinement of the cell alone (a sample
+    interval of a few steps cuts every level alike, about 0.8, and needs no warning)."""
+    shares = [c.step_share for c in costs]
+    if not shares or max(shares) <= STEP_SHARE_SPREAD * min(shares):
+        return []
+    listed = ", ".join(f"{s:.2f}" for s in shares)
+    return [f"the levels' steps averaged {listed} of their cfl steps (cut to land on sample or snapshot times), "
+            "so their Courant numbers differ and the sequence is not a refinement of the cell alone; a "
+            "sample_interval (and snapshot_interval) of many steps at the coarsest level avoids it"]
 
 
 def collect(levels, regions, window, at):
@@ -414,6 +434,7 @@ def markdown(args, levels, costs, results, exact):
     lines += _table(["level", *refined, "cell_size (m)", "points", "steps", "wall (s)", "point-steps"], cost_rows)
     lines += ["", "Values in SI units (kg/m3, Pa, K, m/s, s). Cost: wall seconds and point-steps of all the "
               "level's runs; points and steps are per run."]
+    lines += [f"\n**Warning**, {w}." for w in step_share_warnings(costs)]
     for region in dict.fromkeys(r.region for r in results):
         header = ["quantity", *(f"level {k}" for k in range(len(levels))), "extrapolated",
                   "discretisation error (finest)" if seeds else "error estimate (finest)",
@@ -578,6 +599,8 @@ def main(argv=None):
         if unknown:
             raise PostError(f"--exact names {', '.join(unknown)}, which the study does not measure")
         costs = [level_cost(level) for level in levels]
+        for w in step_share_warnings(costs):
+            print(f"mpmshock-converge: warning: {w}", file=sys.stderr)
         write_csv(args.out / "convergence.csv", results, costs)
         (args.out / "convergence.md").write_text(markdown(args, levels, costs, results, exact))
         plot_cost(args.out / "cost.png", results, costs)

@@ -8,9 +8,10 @@ Rankine-Hugoniot state applies) solid impact at 1000 m/s, 60 um wide, 1 mm bodie
 cell sizes 20, 10 and 5 um. Its checked quantity is the plateau density of the paper's region B400
 (bottom 100 um 400 um) over the tool's default window, the second half of the run (100-200 ns:
 after the shock has left the region, before the release from the free surface returns). Measured
-(2026-11): 3171.87, 3173.44, 3173.94 kg/m3 against the exact 3174.52; observed order 1.65,
-extrapolated 3174.18, error estimate of the finest level 0.234 against a true error 0.572 (2.4x),
-extrapolated error 0.338.
+2026-12-06 at a solid scene's automatic cfl 0.8: 3168.87, 3172.42, 3174.05 kg/m3 against the exact
+3174.52; observed order 1.12, extrapolated 3175.44, error estimate of the finest level 1.39 against
+a true error 0.47 (3.0x), extrapolated error 0.92 (2026-11, at cfl 0.6 with unequally cut steps:
+3171.87, 3173.44, 3173.94; order 1.65, extrapolated error 0.338).
 
 Why not the shock arrival time: the regions are fixed in the lab and the unshocked target flows
 into them at v, one row of points at a time, so a region's mean pressure steps each time a row
@@ -258,12 +259,7 @@ def study(mpmshock, tmp_path_factory):
     """The solid study at 20, 10, 5 um, with the exact B400 density handed to --exact."""
     tmp = tmp_path_factory.mktemp("converge")
     scene = tmp / "solid.scene"
-    # cfl 0.6, not a solid scene's automatic 0.8: at 0.8 the 20 um level's step (1.2 ns) would be
-    # cut to the 1 ns sample interval while the finer levels run at 0.8, so the levels would not
-    # share one Courant number and the sequence would not be a pure refinement (measured 2026-12-06:
-    # observed order 1.12, extrapolated 3175.44 for the exact 3174.52, further than the finest
-    # level's 3174.05).
-    scene.write_text(SOLID_SCENE + "cfl = 0.6\n")
+    scene.write_text(SOLID_SCENE)
     material = hugoniot.default_material(mpmshock)
     exact = hugoniot.solid_shock(1000.0, material)
     arrival = hugoniot.bottom_region_arrival_time(exact, 100e-6, 400e-6)
@@ -303,7 +299,12 @@ def test_csv_header_and_levels(study):
 
 def test_estimate_brackets_the_exact_density(study):
     """The plateau density of B400: the order is observed, the estimate covers the true error of the
-    finest level within 3x without being 10x too large, and the extrapolation is closer."""
+    finest level within 3x without being 10x too large, and the exact value lies within the estimate of
+    the extrapolation. The extrapolation is not closer than the finest level here: the observed order
+    (1.12, 2026-12-06) is not yet the asymptotic one, and Richardson with it overshoots (3175.44 for the
+    exact 3174.52; finest 3174.05). Until that day the study ran at cfl 0.6, where it was closer, but
+    there the 1 ns samples cut the levels' steps by different shares (0.53, 0.69, 0.83 of the cfl step),
+    so that sequence refined the Courant number with the cell (see the warning test below)."""
     rows = rows_of(study, "B400", "density_mean")
     exact = study["exact"].density
     finest, estimate = float(rows[2]["value"]), float(rows[2]["error_estimate"])
@@ -312,7 +313,7 @@ def test_estimate_brackets_the_exact_density(study):
     assert order != "" and 0.5 <= float(order) <= 4.0
     assert true <= 3.0 * estimate, f"true error {true} kg/m3, estimate {estimate}"
     assert estimate < 10.0 * true + 1e-6 * exact, f"estimate {estimate} kg/m3 for a true error {true}"
-    assert abs(extrapolated - exact) <= true
+    assert abs(extrapolated - exact) <= estimate
     assert [float(r["value"]) for r in rows] == sorted(float(r["value"]) for r in rows)   # from below, monotone
 
 
@@ -402,3 +403,17 @@ def test_usage_errors_exit_2_before_anything_runs(mpmshock, tmp_path):
     assert "give the levels with --values" in message
     resolve = lambda extra: resolved_scene(scene, extra, mpmshock)   # noqa: E731
     assert [lv.value for lv in plan_levels("cfl", None, 2, resolve)] == [resolve([])["cfl"], resolve([])["cfl"] / 2]
+
+
+def test_levels_whose_steps_are_cut_unequally_are_warned_of(study, tmp_path):
+    """At a solid scene's cfl 0.8 the 1 ns samples cut every level's step alike (about 0.78 of the cfl
+    step: a few steps per sample), so no warning; at cfl 0.6 the 20 um level takes two half steps per
+    sample and the 5 um level nearly whole ones (0.53 against 0.83), and the tool says so."""
+    shares = [json.loads((study["out"] / f"level_{k}" / "summary.json").read_text())["step_share"] for k in range(3)]
+    assert max(shares) <= 1.1 * min(shares), shares
+    assert "warning" not in study["first"].stderr and "Warning" not in (study["out"] / "convergence.md").read_text()
+    done = converge_cli(study["binary"], study["scene"], "--out", tmp_path / "cfl06", "--set", "cfl=0.6")
+    assert done.returncode == 0, done.stderr
+    warning = [line for line in done.stderr.splitlines() if line.startswith("mpmshock-converge: warning:")]
+    assert len(warning) == 1 and "Courant numbers differ" in warning[0], done.stderr
+    assert "**Warning**" in (tmp_path / "cfl06" / "convergence.md").read_text()
