@@ -23,28 +23,53 @@ std::string bytes_text(double b) {
 
 namespace {
 
+// A body's shock state at particle velocity up (rankine_hugoniot.hpp).
+ShockState shocked(const Model& model, Body b, double up) {
+  return std::visit([&](const auto& eos) { return shock_from_rest(eos, up); }, model.eos[index_of(b)]);
+}
+
 // The shocked state of solid bodies at impact, where their Hugoniots cross (hydrodynamic, the
 // impedance match; tests/test_impedance.cpp checks runs against it): the particle velocity u
 // taken up by the target solves P_t(u) = P_f(V - u), V the closing speed, each P the
 // Rankine-Hugoniot pressure of the body's equation of state (rankine_hugoniot.hpp; with
 // Mie-Grüneisen rho0 (c0 + s u) u).
-std::string impact_state(const Scene& s, const Model& model) {
-  auto P = [&](Body b, double up) {
-    return std::visit([&](const auto& eos) { return shock_from_rest(eos, up).pressure; }, model.eos[index_of(b)]);
-  };
-  auto P_t = [&](double up) { return P(Body::target, up); };
-  auto P_f = [&](double up) { return P(Body::flyer, up); };
+// The particle velocity the target takes up at impact.
+double impact_particle_velocity(const Scene& s, const Model& model) {
   const double V = s.flyer_velocity + s.target_velocity;
   double lo = 0.0, hi = V;
   for (int k = 0; k < 200; ++k) {
     const double u = 0.5 * (lo + hi);
-    (P_t(u) < P_f(V - u) ? lo : hi) = u;
+    (shocked(model, Body::target, u).pressure < shocked(model, Body::flyer, V - u).pressure ? lo : hi) = u;
   }
-  const double u = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+std::string impact_state(const Scene& s, const Model& model) {
+  const double u = impact_particle_velocity(s, model);
   std::ostringstream out;
-  out << "impact (solid Hugoniots, hydrodynamic): " << P_t(u) * 1e-9 << " GPa, the interface moving at "
-      << u - s.target_velocity << " m/s\n";
+  out << "impact (solid Hugoniots, hydrodynamic): " << shocked(model, Body::target, u).pressure * 1e-9
+      << " GPa, the interface moving at " << u - s.target_velocity << " m/s\n";
   return out.str();
+}
+
+// The fastest signal of solid bodies once shocked: in each body's shocked state its longitudinal
+// sound speed c_L (bulk plus shear), the viscous speed A1 c of material still compressing
+// (artificial_viscosity.hpp) and the interface's speed, as the time step counts them. The run's
+// step is shorter still where the quadratic term and the points' noise add to it.
+double shocked_signal(const Scene& s, const Model& model) {
+  const double u = impact_particle_velocity(s, model), V = s.flyer_velocity + s.target_velocity;
+  const double A1 = s.effects.artificial_viscosity ? s.av_linear : 0.0;
+  double fastest = 0.0;
+  for (const Body b : {Body::flyer, Body::target}) {
+    const ShockState st = shocked(model, b, b == Body::target ? u : V - u);
+    const double c2 = std::visit([&](const auto& eos) { return std::max(eos.state(st.J, st.energy).sound_speed_squared, 0.0); },
+                                 model.eos[index_of(b)]);
+    const double rho0 = std::visit([](const auto& eos) { return eos.rho0(); }, model.eos[index_of(b)]);
+    const double cL2 = c2 + (4.0 / 3.0) * model.shear_modulus(b) * st.J / rho0;
+    const double Q = A1 * std::sqrt(c2);
+    fastest = std::max(fastest, std::abs(u - s.target_velocity) + Q + std::sqrt(Q * Q + cL2));
+  }
+  return fastest;
 }
 
 }  // namespace
@@ -111,7 +136,13 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
         << " ns)";
   else
     out << "set by sound (cfl " << s.cfl << ", fastest signal " << signal << " m/s)";
-  out << "; at least " << steps << " steps to " << s.end_time * 1e9 << " ns\n";
+  out << "; at least " << steps << " steps to " << s.end_time * 1e9 << " ns";
+  if (s.every_body_solid() && !(dt0 < mechanical)) {
+    const double shocked_dt = model.time_step(std::max(signal, shocked_signal(s, model)));
+    out << ", about " << static_cast<long long>(std::ceil(s.end_time / shocked_dt))
+        << " at the step of the shocked state (its sound and viscous speeds)";
+  }
+  out << "\n";
   if (s.every_body_solid()) out << impact_state(s, model);
   for (const std::string& w : scene_warnings(s)) out << "warning: " << w << "\n";
   if (const std::string w = probes_size_warning(s, dt0); !w.empty()) out << "warning: " << w << "\n";
