@@ -44,8 +44,8 @@ double impact_particle_velocity(const Scene& s, const Model& model) {
   return 0.5 * (lo + hi);
 }
 
-std::string impact_state(const Scene& s, const Model& model) {
-  const double u = impact_particle_velocity(s, model);
+// u: impact_particle_velocity.
+std::string impact_state(const Scene& s, const Model& model, double u) {
   std::ostringstream out;
   out << "impact (solid Hugoniots, hydrodynamic): " << shocked(model, Body::target, u).pressure * 1e-9
       << " GPa, the interface moving at " << u - s.target_velocity << " m/s\n";
@@ -55,9 +55,10 @@ std::string impact_state(const Scene& s, const Model& model) {
 // The fastest signal of solid bodies once shocked: in each body's shocked state its longitudinal
 // sound speed c_L (bulk plus shear), the viscous speed A1 c of material still compressing
 // (artificial_viscosity.hpp) and the interface's speed, as the time step counts them. The run's
-// step is shorter still where the quadratic term and the points' noise add to it.
-double shocked_signal(const Scene& s, const Model& model) {
-  const double u = impact_particle_velocity(s, model), V = s.flyer_velocity + s.target_velocity;
+// step is shorter still where the quadratic term and the points' noise add to it. u:
+// impact_particle_velocity.
+double shocked_signal(const Scene& s, const Model& model, double u) {
+  const double V = s.flyer_velocity + s.target_velocity;
   const double A1 = s.effects.artificial_viscosity ? s.av_linear : 0.0;
   double fastest = 0.0;
   for (const Body b : {Body::flyer, Body::target}) {
@@ -137,13 +138,14 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   else
     out << "set by sound (cfl " << s.cfl << ", fastest signal " << signal << " m/s)";
   out << "; at least " << steps << " steps to " << s.end_time * 1e9 << " ns";
+  const double impact_u = s.every_body_solid() ? impact_particle_velocity(s, model) : 0.0;
   if (s.every_body_solid() && !(dt0 < mechanical)) {
-    const double shocked_dt = model.time_step(std::max(signal, shocked_signal(s, model)));
+    const double shocked_dt = model.time_step(std::max(signal, shocked_signal(s, model, impact_u)));
     out << ", about " << static_cast<long long>(std::ceil(s.end_time / shocked_dt))
         << " at the step of the shocked state (its sound and viscous speeds)";
   }
   out << "\n";
-  if (s.every_body_solid()) out << impact_state(s, model);
+  if (s.every_body_solid()) out << impact_state(s, model, impact_u);
   for (const std::string& w : scene_warnings(s)) out << "warning: " << w << "\n";
   if (const std::string w = probes_size_warning(s, dt0); !w.empty()) out << "warning: " << w << "\n";
   // Every effect the run simulates, and none that it does not.

@@ -810,10 +810,10 @@ std::string override_key(const std::string& arg) { return trim(arg.substr(0, arg
 
 std::vector<std::string> scene_warnings(const Scene& s) {
   std::vector<std::string> out;
-  const double cfl_auto = auto_cfl(s.shape_function, strongly_viscous(s));
+  const double cfl_auto = auto_cfl(s);
   if (s.cfl > cfl_auto)
-    out.push_back("cfl " + format_number(s.cfl) + " > " + format_number(cfl_auto) + " (the automatic value of "
-                  "this shape_function): fewer steps, larger errors (an isentropic release heats about twice "
+    out.push_back("cfl " + format_number(s.cfl) + " > " + format_number(cfl_auto) + " (the automatic value for "
+                  "this shape_function and viscosity): fewer steps, larger errors (an isentropic release heats about twice "
                   "as much at twice the step: docs/stability.md)");
   if (s.snapshot_interval > 0.0 && s.end_time / s.snapshot_interval > 1000)
     out.push_back("snapshot_interval " + format_number(s.snapshot_interval) + " s writes " +
@@ -1315,7 +1315,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   if (scene.av_linear < 0.0) scene.av_linear = auto_av_linear(scene.every_body_solid());
   if (scene.volumetric_smoothing == Smoothing::automatic)
     scene.volumetric_smoothing = auto_volumetric_smoothing(scene.every_body_solid());
-  if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene.shape_function, strongly_viscous(scene));
+  if (scene.cfl < 0.0) scene.cfl = auto_cfl(scene);
   check_consistency(scene, [&](const std::string& key) { return Origin{scene.where(key)}; }, errors);
   errors.throw_if_any();
   if (scene.symmetry == Symmetry::automatic)

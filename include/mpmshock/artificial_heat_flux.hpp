@@ -87,8 +87,11 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
       // Most points do not compress (q = 0): their rate is 0 exactly, and adding N * 0 to a nodal
       // rate changes no bit, so they add their temperature (and capacity) alone.
       const double q = pts.q[p];
-      const double alpha = q == 0.0 ? 0.0 : flux.beta * flux.cell_size * q / (pts.density(p) * flux.sound_speed[b]);
-      const double r = alpha == 0.0 ? 0.0 : -std::expm1(-alpha * pi2_dt_over_h2);
+      double r = 0.0;
+      if (q != 0.0) {
+        const double alpha = flux.beta * flux.cell_size * q / (pts.density(p) * flux.sound_speed[b]);
+        r = -std::expm1(-alpha * pi2_dt_over_h2);
+      }
       // A point in a bad state (a NaN the step will report) gives its nodes nothing, so the report
       // names it and not its neighbours.
       if (!std::isfinite(T[p]) || !(r >= 0.0)) return;

@@ -102,7 +102,7 @@ struct Scene {
   std::int64_t particles_per_cell = 2;
   double grid_margin = -1.0;  // < 0: automatic (see derived_grid_margin)
   double end_time = 1e-6;
-  double cfl = -1.0;  // < 0 until parsed: automatic, auto_cfl(shape_function, strongly_viscous(*this))
+  double cfl = -1.0;  // < 0 until parsed: automatic, auto_cfl(*this)
   // The largest relative volume change |tr D| dt of a point in one step: the step is also at most
   // this over the fastest rate of volume change (a collapsing void's jet).
   double max_volume_change = 0.02;
@@ -223,12 +223,13 @@ constexpr double kCfl = 0.3, kCflDomain = 0.6;
 // viscosity's heating, not the step's; docs/stability.md). The cost: the points' work mismatch
 // grows (test_hugoniot, 10 um, 1000 m/s: -0.48 % of E for -0.31 %; its bound 0.5 %).
 constexpr double kCflDomainViscous = 0.8;
-constexpr double auto_cfl(ShapeFunction shape, bool strongly_viscous = false) {
-  if (shape != ShapeFunction::bspline2_domain) return kCfl;
+// A scene's automatic cfl, by its shape function and (with the domain B-spline) its viscosity: the
+// larger step where the viscosity is on with A1 >= 0.6.
+inline double auto_cfl(const Scene& s) {
+  if (s.shape_function != ShapeFunction::bspline2_domain) return kCfl;
+  const bool strongly_viscous = s.effects.artificial_viscosity && s.av_linear >= kAvLinearSolid;
   return strongly_viscous ? kCflDomainViscous : kCflDomain;
 }
-// Whether a scene's viscosity is strong enough for the larger automatic step: on, with A1 >= 0.6.
-inline bool strongly_viscous(const Scene& s) { return s.effects.artificial_viscosity && s.av_linear >= kAvLinearSolid; }
 
 // A scene error names the file, the line and the key: "scene.cfg:12: key 'porosity': ...".
 class SceneError : public std::runtime_error {
