@@ -1,9 +1,11 @@
 // The --check report: what a scene builds, what it will cost, before anything runs.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <vector>
 
+#include "mpmshock/material_law.hpp"
 #include "mpmshock/probes.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/setup.hpp"
@@ -201,11 +203,14 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   if (s.material_of(Body::flyer).bound_expansion || s.material_of(Body::target).bound_expansion ||
       (s.has_window() && s.material_of(Body::window).bound_expansion))
     on.push_back("bounded expansion (Rose binding curve)");
-  for (const std::string& name : s.materials_in_use())
-    if (s.material_by_name(name).equation_of_state == EquationOfStateModel::tillotson) {
-      on.push_back("Tillotson equation of state (compressed, expanded and vapour branches)");
-      break;
-    }
+  // The laws that name themselves (the registry's, src/laws/), each once if any body takes it.
+  for (const MaterialLaw& law : material_laws()) {
+    const std::vector<std::string> names = s.materials_in_use();
+    if (!law.effect.empty() && std::any_of(names.begin(), names.end(), [&](const std::string& name) {
+          return law.used(s, s.material_by_name(name));
+        }))
+      on.push_back(law.effect);
+  }
   if (s.effects.artificial_viscosity) {
     std::ostringstream av;
     av << "artificial viscosity (A1 " << s.av_linear << ", A2 " << s.av_quadratic << ")";

@@ -13,6 +13,7 @@
 // (thermal_softening = on): aluminium (6061-T6), copper and LiF after Steinberg (1996); tantalum and
 // PMMA have none (melt_temperature = 0).
 #include "mpmshock/material.hpp"
+#include "mpmshock/material_law.hpp"
 
 namespace mpmshock {
 
@@ -20,7 +21,7 @@ namespace {
 
 Material make(double rho0, double c0, double s, double gamma0, double cv, double E, double nu, double Y0,
               double E_tan, double k, double cohesive, double fit_up) {
-  Material m = without_tillotson(Material{});
+  Material m = without("tillotson", Material{});
   m.density = rho0;
   m.sound_speed = c0;
   m.hugoniot_slope = s;
@@ -49,8 +50,6 @@ Material with_johnson_cook(Material m, double A, double B, double n, double C, d
 
 }  // namespace
 
-Material without_johnson_cook(Material m) { return with_johnson_cook(m, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0); }
-
 // Steinberg-Guinan softening and melting: A [1/Pa], B [1/K], T_m0 [K], a, Y_max [Pa], latent heat [J/kg].
 static Material with_softening(Material m, double A, double B, double T_m0, double a, double Y_max, double L) {
   m.pressure_hardening_scale = 1.0 / A;
@@ -59,19 +58,6 @@ static Material with_softening(Material m, double A, double B, double T_m0, doub
   m.lindemann_a = a;
   m.yield_stress_max = Y_max;
   m.latent_heat = L;
-  return m;
-}
-
-Material without_softening(Material m) {
-  m.pressure_hardening_scale = m.softening_temperature = m.melt_temperature = 0.0;
-  m.lindemann_a = m.yield_stress_max = m.latent_heat = 0.0;
-  return m;
-}
-
-Material without_tillotson(Material m) {
-  m.tillotson_a = m.tillotson_b = m.tillotson_bulk_modulus = m.tillotson_nonlinear_modulus = 0.0;
-  m.tillotson_energy = m.tillotson_incipient_vaporisation = m.tillotson_complete_vaporisation = 0.0;
-  m.tillotson_alpha = m.tillotson_beta = 0.0;
   return m;
 }
 
@@ -101,7 +87,7 @@ const std::vector<LibraryMaterial>& material_library() {
       // Steinberg 1996 (tantalum): rho0 16690, c0 3414, s 1.201, gamma0 1.67, G0 69 GPa, Y0 0.77 GPa,
       // Y_max 1.1 GPa; nu 0.34 gives E = 184.9 GPa.
       {"tantalum",
-       without_softening(without_johnson_cook(
+       without("steinberg_guinan", without("johnson_cook",
            make(16690.0, 3414.0, 1.201, 1.67, 140.0, 184.9e9, 0.34, 770e6, 0.66e9, 57.5, 4.32e6, 3000.0))),
        "tantalum, Steinberg (1996) (Hugoniot, G0, Y0; tangent modulus (Y_max - Y0)/0.5); c_v 140 J/(kg K), "
        "k 57.5 W/(m K), cohesive energy 8.10 eV/atom (Kittel); no Johnson-Cook or Steinberg-Guinan softening "
@@ -110,8 +96,8 @@ const std::vector<LibraryMaterial>& material_library() {
       // the polycrystal (E 64.9 GPa, nu 0.22), elastic limit ~0.2 GPa.
       // Steinberg (1996), LiF (single crystal, [100]): A 5.00 /Mbar, B 6.18e-4 /K, T_m0 1480 K, a 1.4,
       // Y_max 0.36 GPa; heat of fusion 27.09 kJ/mol (CRC).
-      {"lif", with_softening(without_johnson_cook(make(2638.0, 5150.0, 1.35, 1.69, 1560.0, 64.9e9, 0.22, 200e6, 0.0,
-                                                       11.3, 39.9e6, 5000.0)),
+      {"lif", with_softening(without("johnson_cook", make(2638.0, 5150.0, 1.35, 1.69, 1560.0, 64.9e9, 0.22, 200e6,
+                                                          0.0, 11.3, 39.9e6, 5000.0)),
                              5.00e-11, 6.18e-4, 1480.0, 1.4, 0.36e9, 1044e3),
        "lithium fluoride window, Marsh (1980) LASL Shock Hugoniot Data (c0, s), gamma0 1.69; polycrystal "
        "E and nu; yield 0.2 GPa (approximate, no hardening); c_v 1560 J/(kg K), k 11.3 W/(m K); cohesive "
@@ -119,7 +105,7 @@ const std::vector<LibraryMaterial>& material_library() {
        "and melt curve of single-crystal LiF, Steinberg (1996) (T_m0 1480 K is its fit; LiF melts at 1121 K), heat "
        "of fusion 27.09 kJ/mol (CRC)"},
       // PMMA: Marsh (1980), c0 2598, s 1.516; gamma0 0.97.
-      {"pmma", without_softening(without_johnson_cook(
+      {"pmma", without("steinberg_guinan", without("johnson_cook",
                    make(1186.0, 2598.0, 1.516, 0.97, 1466.0, 3.3e9, 0.35, 100e6, 0.0, 0.19, 20e6, 3000.0))),
        "PMMA window, Marsh (1980) LASL Shock Hugoniot Data (c0, s), gamma0 0.97; E 3.3 GPa, nu 0.35, "
        "yield 0.1 GPa (approximate, no hardening); c_v 1466 J/(kg K), k 0.19 W/(m K); no cohesive energy "

@@ -34,11 +34,6 @@ ThermalSoftening softening_of(const Material& mat) {
   return soft;
 }
 
-EquationOfStateLaw equation_of_state_of(const Material& mat) {
-  if (mat.equation_of_state == EquationOfStateModel::tillotson) return Tillotson(mat);
-  return MieGruneisen(mat);
-}
-
 MeltCurve melt_curve_of(const Material& mat) { return {mat.melt_temperature, mat.lindemann_a, mat.gruneisen_gamma}; }
 
 namespace {

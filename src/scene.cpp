@@ -15,7 +15,10 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <utility>
+#include <variant>
 
+#include "mpmshock/material_law.hpp"
 #include "mpmshock/units.hpp"
 
 namespace mpmshock {
@@ -81,12 +84,6 @@ class SceneErrors {
   }
   std::vector<std::pair<long, std::string>> errors_;
 };
-
-std::string format_number(double v) {
-  char buf[64];
-  auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);  // shortest text that reads back exactly
-  return ec == std::errc() ? std::string(buf, ptr) : std::string("nan");
-}
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r\n\f\v");
@@ -276,6 +273,50 @@ Key choice(std::string name, std::vector<std::pair<std::string, Enum>> options, 
 
 #define FIELD(member) [](auto& s) -> auto& { return s.member; }
 
+// The key that chooses a material's law of a slot (equation_of_state, strength_model): its words and
+// their meanings from the registry; the default is the slot's first law.
+template <class Enum>
+Key slot_key(LawSlot slot, std::string name, const std::string& intro, const std::string& tail, Enum Material::*field) {
+  std::vector<std::pair<std::string, Enum>> options;
+  std::string meaning;
+  for (const MaterialLaw& law : material_laws()) {
+    if (law.slot != slot) continue;
+    options.emplace_back(law.name, static_cast<Enum>(law.choice));
+    meaning += (meaning.empty() ? "" : "; ") + law.summary;
+  }
+  const std::string def = options.front().first;
+  return choice<Enum>(std::move(name), std::move(options), def, intro + meaning + tail,
+                      [field](auto& s) -> auto& { return s.material.*field; });
+}
+
+// The material keys, from the registry of laws (src/laws/registry.cpp): each law's constants, the
+// key that chooses a slot's law before the slot's first.
+void append_material_keys(std::vector<Key>& k) {
+  const std::size_t first = k.size();
+  bool eos_listed = false, strength_listed = false;
+  for (const MaterialLaw& law : material_laws()) {
+    if (law.slot == LawSlot::equation_of_state && !std::exchange(eos_listed, true))
+      k.push_back(slot_key(LawSlot::equation_of_state, "equation_of_state", "", "; each body takes its own material's",
+                           &Material::equation_of_state));
+    if (law.slot == LawSlot::strength && !std::exchange(strength_listed, true))
+      k.push_back(slot_key(LawSlot::strength, "strength_model", "the flow stress of plasticity: ",
+                           "; each body takes its material's; a named material without its own "
+                           "material.NAME.strength_model takes the bare key's",
+                           &Material::strength_model));
+    for (const MaterialKey& mk : law.keys) {
+      if (const auto* field = std::get_if<double Material::*>(&mk.field)) {
+        const Range range{mk.range.lo, mk.range.hi, mk.range.lo_open, mk.range.hi_open};
+        k.push_back(quantity(mk.name, mk.dim, range, mk.default_text, mk.meaning,
+                             [f = *field](auto& s) -> auto& { return s.material.*f; }));
+      } else {
+        k.push_back(flag(mk.name, mk.default_text, mk.meaning,
+                         [f = std::get<bool Material::*>(mk.field)](auto& s) -> auto& { return s.material.*f; }));
+      }
+    }
+  }
+  for (std::size_t i = first; i < k.size(); ++i) k[i].material = true;
+}
+
 const std::vector<Key>& keys() {
   static const std::vector<Key> table = [] {
     using D = Dimension;
@@ -456,126 +497,7 @@ const std::vector<Key>& keys() {
                      FIELD(effects.artificial_viscosity)));
     // Material (the paper's aluminium): the material named "scene"; material.NAME.KEY sets the same
     // keys of a named material.
-    const std::size_t first_material_key = k.size();
-    k.push_back(quantity("density", D::density, Range{0.0, 1e5, true, false}, "2700 kg/m3", "solid reference density rho0",
-                         FIELD(material.density)));
-    k.push_back(quantity("youngs_modulus", D::pressure, Range{0.0, 1e13, true, false}, "69 GPa",
-                         "Young's modulus E (with nu gives the shear modulus)", FIELD(material.youngs_modulus)));
-    k.push_back(quantity("poisson_ratio", D::none, open(-1.0, 0.5), "0.33", "Poisson's ratio nu",
-                         FIELD(material.poisson_ratio)));
-    k.push_back(quantity("yield_stress", D::pressure, positive(), "120 MPa",
-                         "initial yield stress sigma_Y0", FIELD(material.yield_stress)));
-    k.push_back(quantity("tangent_modulus", D::pressure, non_negative(), "384 MPa",
-                         "tangent modulus E_tan past yield", FIELD(material.tangent_modulus)));
-    k.push_back(quantity("hardening_beta", D::none, closed(0.0, 1.0), "1",
-                         "share of isotropic hardening: 1 isotropic, 0 kinematic", FIELD(material.hardening_beta)));
-    k.push_back(quantity("sound_speed", D::speed, Range{0.0, 1e5, true, false}, "5350 m/s",
-                         "bulk sound speed c0 (Us = c0 + s up)", FIELD(material.sound_speed)));
-    k.push_back(quantity("hugoniot_slope", D::none, closed(1.0, 5.0), "1.34",
-                         "Us-up slope s (the paper's lambda)", FIELD(material.hugoniot_slope)));
-    k.push_back(quantity("gruneisen_gamma", D::none, closed(0.0, 10.0), "1.96",
-                         "Grüneisen gamma0 at rho0; gamma rho is held constant", FIELD(material.gruneisen_gamma)));
-    k.push_back(quantity("specific_heat", D::specific_heat, positive(), "880 J/(kg K)",
-                         "specific heat c_v", FIELD(material.specific_heat)));
-    k.push_back(quantity("thermal_conductivity", D::conductivity, non_negative(), "167 W/(m K)",
-                         "thermal conductivity k, used with heat_conduction = on (6061-T6; pure aluminium: 237 W/(m K))",
-                         FIELD(material.thermal_conductivity)));
-    k.push_back(quantity("initial_temperature", D::temperature, positive(), "300 K",
-                         "initial temperature T0", FIELD(material.initial_temperature)));
-    k.push_back(quantity("cohesive_energy", D::specific_energy, positive(), "12.1 MJ/kg",
-                         "cohesive energy, with bounded_expansion = on: the expanded branch of the equation of state binds with it (Rose's "
-                         "universal binding curve; tension at most 13.2 GPa for aluminium, zero at full expansion)",
-                         FIELD(material.cohesive_energy)));
-    k.push_back(flag("bounded_expansion", "off",
-                     "on: the expanded branch of the equation of state is Rose's binding curve with cohesive_energy "
-                     "(tension bounded, zero at full expansion; past its peak the material cavitates, a material "
-                     "instability: use with spall = on); off: the linear branch P = rho0 c0^2 (1 - V/V0), unbounded",
-                     FIELD(material.bound_expansion)));
-    k.push_back(quantity("fit_particle_velocity", D::speed, positive(), "6 km/s",
-                         "the largest particle velocity the Us-up fit describes (217 GPa on the aluminium Hugoniot); "
-                         "points compressed past its Hugoniot state are counted as outside the equation of state's range",
-                         FIELD(material.fit_particle_velocity)));
-    k.push_back(quantity("softening_temperature", D::temperature, Range{0.0, 1e5, true, false}, "1923 K",
-                         "with thermal_softening: temperature at which linear softening would take G and sigma_Y to "
-                         "zero, 300 K + 1/B (Steinberg-Guinan 6061-T6: B = 6.16e-4 /K)",
-                         FIELD(material.softening_temperature)));
-    k.push_back(quantity("melt_temperature", D::temperature, Range{0.0, 1e5, true, false}, "1220 K",
-                         "with thermal_softening: melt temperature at J = 1; T_m(J) = T_m0 exp(2a(1 - J)) "
-                         "J^(-2(gamma0 - a - 1/3)) (Lindemann); 0: the material has no Steinberg-Guinan constants",
-                         FIELD(material.melt_temperature)));
-    k.push_back(quantity("lindemann_a", D::none, closed(0.0, 10.0), "1.5",
-                         "volume coefficient a of the Lindemann melt curve (Steinberg-Guinan 6061-T6)",
-                         FIELD(material.lindemann_a)));
-    k.push_back(quantity("pressure_hardening_scale", D::pressure, non_negative(), "15.337 GPa",
-                         "with thermal_softening: Steinberg-Guinan's pressure term A P eta^(-1/3), A = 1 / this "
-                         "(6061-T6: A = 6.52 /Mbar); pressure stiffens G and sigma_Y",
-                         FIELD(material.pressure_hardening_scale)));
-    k.push_back(quantity("yield_stress_max", D::pressure, non_negative(), "680 MPa",
-                         "with thermal_softening: Steinberg-Guinan's cap Y_max on the work-hardened yield stress "
-                         "(6061-T6)",
-                         FIELD(material.yield_stress_max)));
-    k.push_back(quantity("latent_heat", D::specific_energy, non_negative(), "397 kJ/kg",
-                         "with thermal_softening: heat of fusion taken at the melt temperature before the temperature "
-                         "rises further (aluminium, CRC Handbook)",
-                         FIELD(material.latent_heat)));
-    k.push_back(choice<EquationOfStateModel>(
-        "equation_of_state", {{"mie_gruneisen", EquationOfStateModel::mie_gruneisen}, {"tillotson", EquationOfStateModel::tillotson}},
-        "mie_gruneisen",
-        "mie_gruneisen: referenced to the Us-up Hugoniot (sound_speed, hugoniot_slope, gruneisen_gamma); "
-        "tillotson: Tillotson's compressed, expanded and vapour branches with the tillotson_* keys (built-in "
-        "constants: aluminium); each body takes its own material's",
-        FIELD(material.equation_of_state)));
-    k.push_back(quantity("tillotson_a", D::none, closed(0.0, 10.0), "0.5",
-                         "Tillotson a (equation_of_state = tillotson; aluminium, Tillotson 1962)", FIELD(material.tillotson_a)));
-    k.push_back(quantity("tillotson_b", D::none, closed(0.0, 10.0), "1.63", "Tillotson b", FIELD(material.tillotson_b)));
-    k.push_back(quantity("tillotson_bulk_modulus", D::pressure, non_negative(), "75.2 GPa",
-                         "Tillotson A, the bulk modulus of the reference state; 0: the material has no Tillotson constants",
-                         FIELD(material.tillotson_bulk_modulus)));
-    k.push_back(quantity("tillotson_nonlinear_modulus", D::pressure, non_negative(), "65 GPa",
-                         "Tillotson B, the coefficient of mu^2 (mu = rho/rho0 - 1)", FIELD(material.tillotson_nonlinear_modulus)));
-    k.push_back(quantity("tillotson_energy", D::specific_energy, non_negative(), "5 MJ/kg",
-                         "Tillotson E0, the energy scale of the b term", FIELD(material.tillotson_energy)));
-    k.push_back(quantity("tillotson_incipient_vaporisation", D::specific_energy, non_negative(), "2.7 MJ/kg",
-                         "Tillotson E_iv: expanded material below it follows the cold (compressed) branch",
-                         FIELD(material.tillotson_incipient_vaporisation)));
-    k.push_back(quantity("tillotson_complete_vaporisation", D::specific_energy, non_negative(), "14.1 MJ/kg",
-                         "Tillotson E_cv: expanded material above it follows the vapour branch; between E_iv and "
-                         "E_cv the pressure is interpolated in E",
-                         FIELD(material.tillotson_complete_vaporisation)));
-    k.push_back(quantity("tillotson_alpha", D::none, closed(0.0, 100.0), "5",
-                         "Tillotson alpha, the decay of the vapour branch's b term with expansion", FIELD(material.tillotson_alpha)));
-    k.push_back(quantity("tillotson_beta", D::none, closed(0.0, 100.0), "5",
-                         "Tillotson beta, the decay of the vapour branch's A term with expansion", FIELD(material.tillotson_beta)));
-    k.push_back(choice<StrengthModel>(
-        "strength_model", {{"bilinear", StrengthModel::bilinear}, {"johnson_cook", StrengthModel::johnson_cook}},
-        "bilinear",
-        "the flow stress of plasticity: bilinear, yield_stress + the plastic modulus of tangent_modulus times "
-        "eps_p (with thermal_softening, Steinberg-Guinan's factor); johnson_cook, (A + B eps_p^n)(1 + C ln "
-        "rate)(1 - T*^m) with the jc_* constants, strain rate in 1/s, its own thermal softening and melt at "
-        "jc_melt_temperature (isotropic hardening; built-in constants: aluminium, copper); each body takes its "
-        "material's; a named material without its own material.NAME.strength_model takes the bare key's",
-        FIELD(material.strength_model)));
-    k.push_back(quantity("jc_yield_stress", D::pressure, non_negative(), "324 MPa",
-                         "Johnson-Cook A, the yield stress at zero plastic strain, 1 /s and room temperature "
-                         "(strength_model = johnson_cook; 6061-T6 after Johnson and Holmquist 1989); 0: the material "
-                         "has no Johnson-Cook constants",
-                         FIELD(material.jc_yield_stress)));
-    k.push_back(quantity("jc_hardening", D::pressure, non_negative(), "114 MPa", "Johnson-Cook B, the strain hardening",
-                         FIELD(material.jc_hardening)));
-    k.push_back(quantity("jc_hardening_exponent", D::none, closed(0.0, 10.0), "0.42", "Johnson-Cook n",
-                         FIELD(material.jc_hardening_exponent)));
-    k.push_back(quantity("jc_rate_coefficient", D::none, closed(0.0, 10.0), "0.002",
-                         "Johnson-Cook C, per e-fold of the equivalent strain rate above 1 /s",
-                         FIELD(material.jc_rate_coefficient)));
-    k.push_back(quantity("jc_thermal_exponent", D::none, closed(0.0, 100.0), "1.34", "Johnson-Cook m",
-                         FIELD(material.jc_thermal_exponent)));
-    k.push_back(quantity("jc_melt_temperature", D::temperature, closed(0.0, 1e5), "925 K",
-                         "Johnson-Cook T_m: T* = (T - jc_room_temperature) / (T_m - jc_room_temperature); molten at T_m",
-                         FIELD(material.jc_melt_temperature)));
-    k.push_back(quantity("jc_room_temperature", D::temperature, closed(0.0, 1e5), "298 K",
-                         "Johnson-Cook T_r, the temperature of its tests, where T* = 0",
-                         FIELD(material.jc_room_temperature)));
-    for (std::size_t i = first_material_key; i < k.size(); ++i) k[i].material = true;
+    append_material_keys(k);
     // Output
     k.push_back(text("output_dir", "output", "directory for regions.csv, snapshots and the summary (no control characters, no '#')",
                      FIELD(output_dir)));
@@ -876,7 +798,7 @@ void set_material_key(Scene& scene, const Entry& e) {
   Scene holder;  // the key sets Scene::material: set it on a scene holding this material
   const auto it = scene.materials.find(name);
   // A new material starts from aluminium's constants, without its (6061-T6) Johnson-Cook and its Tillotson ones.
-  holder.material = it != scene.materials.end() ? it->second : without_tillotson(without_johnson_cook(Material{}));
+  holder.material = it != scene.materials.end() ? it->second : without("tillotson", without("johnson_cook", Material{}));
   k->set(holder, e.value, e.at);
   scene.materials[name] = holder.material;
 }
@@ -960,117 +882,24 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                   " (mpmshock --materials lists the built-in ones; material.NAME.KEY keys define new ones)");
     materials_known = false;
   }
-  if (s.material.tangent_modulus >= s.material.youngs_modulus)
-    fail("tangent_modulus", "must be smaller than youngs_modulus");
-  for (const auto& [name, m] : s.materials)
-    if (m.tangent_modulus >= m.youngs_modulus)
-      fail("material." + name + ".tangent_modulus", "must be smaller than youngs_modulus of material " + name);
-  // Each body's strength law is its material's (strength_model, a material key): the bodies may mix
-  // the bilinear law and Johnson-Cook's (model.cpp).
-  std::string johnson_cook_key;  // the strength_model key of the first material that takes Johnson-Cook
-  bool any_bilinear = false;
+  // Each law a body's material takes checks that material's constants, and once the scene settings it
+  // cannot go with (src/laws/), named by the key that chose it for its first body.
   if (materials_known)
-    for (const std::string& name : s.materials_in_use()) {
-      const bool jc = s.material_by_name(name).strength_model == StrengthModel::johnson_cook;
-      // (A named material's law the bare key set is named by the bare key.)
-      const std::string own = material_key_prefix(name) + "strength_model";
-      if (jc && johnson_cook_key.empty()) johnson_cook_key = s.origin.count(own) ? own : "strength_model";
-      any_bilinear = any_bilinear || !jc;
-    }
-  if (materials_known && s.effects.thermal_softening && any_bilinear) {
-    // Each bilinear body softens and melts with its own material's constants; a starting state the
-    // material cannot have (at or above its softening or melt temperature it has no strength before
-    // anything happens) is refused.
-    for (const std::string& name : s.materials_in_use()) {
-      if (s.material_by_name(name).strength_model != StrengthModel::bilinear) continue;
-      const std::string prefix = material_key_prefix(name);
-      const std::string which = name == "scene" ? std::string() : " (material " + name + ")";
-      const Material& m = s.material_by_name(name);
-      const double T0 = m.initial_temperature;
-      if (!m.has_softening()) {
-        fail(prefix + "melt_temperature", "thermal_softening = on, but material " + name +
-                                              " has no Steinberg-Guinan constants: give its " + prefix +
-                                              "melt_temperature, softening_temperature, lindemann_a, "
-                                              "pressure_hardening_scale, yield_stress_max and latent_heat");
-        continue;
+    for (const MaterialLaw& law : material_laws()) {
+      const char* slot_key = law.slot == LawSlot::equation_of_state ? "equation_of_state"
+                             : law.slot == LawSlot::strength        ? "strength_model"
+                                                                    : "thermal_softening";
+      std::string chosen_by;
+      for (const std::string& name : s.materials_in_use()) {
+        const Material& m = s.material_by_name(name);
+        if (!law.used(s, m)) continue;
+        law.check(MaterialCheck{s, m, name, material_key_prefix(name), fail});
+        // (A named material's law the bare key set is named by the bare key.)
+        const std::string own = material_key_prefix(name) + slot_key;
+        if (chosen_by.empty()) chosen_by = s.origin.count(own) ? own : slot_key;
       }
-      if (m.softening_temperature <= T0)
-        fail(prefix + "softening_temperature", "must be above initial_temperature (" + format_number(T0) +
-                                                   " K): the material would start with no strength" + which);
-      if (m.melt_temperature <= T0)
-        fail(prefix + "melt_temperature", "must be above initial_temperature (" + format_number(T0) +
-                                              " K): the material would start molten" + which);
-      if (!(m.pressure_hardening_scale > 0.0))
-        fail(prefix + "pressure_hardening_scale", "must be > 0 with thermal_softening = on" + which);
-      if (m.yield_stress_max < m.yield_stress)
-        fail(prefix + "yield_stress_max", "must be at least yield_stress (" + format_number(m.yield_stress) +
-                                              " Pa): the cap would lie below the initial yield" + which);
+      if (!chosen_by.empty()) law.check_scene(s, chosen_by, fail);
     }
-  }
-  if (!johnson_cook_key.empty()) {
-    const std::string& key = johnson_cook_key;
-    if (!s.effects.plasticity) fail(key, "johnson_cook needs plasticity = on");
-    // Its thermal term softens by the energy model's temperature: the run's must be that one.
-    if (!s.effects.thermal) fail(key, "johnson_cook needs thermal = on (it softens by temperature)");
-    if (s.temperature_model == TemperatureModel::paper)
-      fail(key, "johnson_cook cannot go with temperature_model = paper: the paper's temperature leaves "
-                "out the compaction heat, and the law softens by the energy model's; use "
-                "temperature_model = energy (paper_temperature = on reports the paper's beside it)");
-    if (s.effects.thermal_softening && !any_bilinear)
-      fail(key, "johnson_cook softens by its own (1 - T*^m) and melts at jc_melt_temperature, and no body takes "
-                "the bilinear law that thermal_softening (Steinberg-Guinan) softens: use thermal_softening = off");
-    // Each such material needs its constants, in a state where it has strength.
-    for (const std::string& name : s.materials_in_use()) {
-      const Material& m = s.material_by_name(name);
-      if (m.strength_model != StrengthModel::johnson_cook) continue;
-      const std::string prefix = material_key_prefix(name);
-      if (!m.has_johnson_cook())
-        fail(prefix + "jc_yield_stress", "strength_model = johnson_cook, but material " + name +
-                                             " has no Johnson-Cook constants: give its " + prefix +
-                                             "jc_* keys (mpmshock --keys), or use strength_model = bilinear");
-      else if (m.hardening_beta != 1.0)
-        fail(prefix + "hardening_beta", "johnson_cook hardens isotropically: needs hardening_beta = 1 (material " + name + ")");
-      else if (!(m.jc_thermal_exponent > 0.0))
-        fail(prefix + "jc_thermal_exponent", "must be > 0 with strength_model = johnson_cook (material " + name + ")");
-      else if (!(m.jc_melt_temperature > std::max(m.jc_room_temperature, m.initial_temperature)))
-        fail(prefix + "jc_melt_temperature", "must be above jc_room_temperature and initial_temperature (material " +
-                                                 name + "): the material would start molten");
-    }
-  }
-  // The equation of state: each body's with its constants (bodies of different laws: model.cpp).
-  if (materials_known) {
-    auto material_named = [](const std::string& name) {
-      return name == "scene" ? std::string("the scene's own material (the bare keys)") : "material " + name;
-    };
-    bool any_tillotson = false;
-    for (const std::string& name : s.materials_in_use()) {
-      const std::string prefix = material_key_prefix(name);
-      const Material& m = s.material_by_name(name);
-      if (m.equation_of_state != EquationOfStateModel::tillotson) continue;
-      any_tillotson = true;
-      if (!m.has_tillotson())
-        fail(prefix + "equation_of_state", "is tillotson, but " + material_named(name) +
-                                               " has no Tillotson constants: give its " + prefix +
-                                               "tillotson_* keys (mpmshock --keys)");
-      else if (!(m.tillotson_energy > 0.0))
-        fail(prefix + "tillotson_energy", "must be > 0 with equation_of_state = tillotson (" + material_named(name) + ")");
-      else if (!(m.tillotson_complete_vaporisation > m.tillotson_incipient_vaporisation))
-        fail(prefix + "tillotson_complete_vaporisation",
-             "must exceed tillotson_incipient_vaporisation (" + material_named(name) + ")");
-      if (m.bound_expansion)
-        fail(prefix + "bounded_expansion", "is Mie-Grüneisen's expanded branch; Tillotson has its own (" +
-                                               material_named(name) + "): leave it off with equation_of_state = tillotson");
-    }
-    // The paper's model adds the plastic heat to the reference curve's temperature, which carries
-    // the shock heating only where that curve is the Hugoniot.
-    if (any_tillotson && s.effects.thermal && s.temperature_model == TemperatureModel::paper)
-      fail("temperature_model", "paper needs equation_of_state = mie_gruneisen: it adds the plastic heat to the "
-                                "Hugoniot's temperature, and Tillotson's reference is its isentrope (the shock "
-                                "heating would be lost)");
-    if (any_tillotson && s.effects.thermal && s.paper_temperature)
-      fail("paper_temperature", "needs equation_of_state = mie_gruneisen: the paper's model adds the plastic heat "
-                                "to the Hugoniot's temperature, and Tillotson's reference is its isentrope");
-  }
   if (s.has_window() && !is_multiple(s.window_height, a))
     fail("window_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
                               format_number(a) + " m)");
@@ -1156,30 +985,6 @@ std::string asymmetry_of(const Scene& s) {
       !same_constants(s.material_of(Body::flyer), s.material_of(Body::target)))
     return "the flyer's material differs from the target's";
   return "";
-}
-
-bool same_constants(const Material& a, const Material& b) {
-  return a.density == b.density && a.youngs_modulus == b.youngs_modulus && a.poisson_ratio == b.poisson_ratio &&
-         a.yield_stress == b.yield_stress && a.tangent_modulus == b.tangent_modulus &&
-         a.hardening_beta == b.hardening_beta && a.sound_speed == b.sound_speed &&
-         a.hugoniot_slope == b.hugoniot_slope && a.gruneisen_gamma == b.gruneisen_gamma &&
-         a.specific_heat == b.specific_heat && a.thermal_conductivity == b.thermal_conductivity &&
-         a.initial_temperature == b.initial_temperature && a.cohesive_energy == b.cohesive_energy &&
-         a.bound_expansion == b.bound_expansion && a.fit_particle_velocity == b.fit_particle_velocity &&
-         a.jc_yield_stress == b.jc_yield_stress && a.jc_hardening == b.jc_hardening &&
-         a.jc_hardening_exponent == b.jc_hardening_exponent && a.jc_rate_coefficient == b.jc_rate_coefficient &&
-         a.jc_thermal_exponent == b.jc_thermal_exponent && a.jc_melt_temperature == b.jc_melt_temperature &&
-         a.jc_room_temperature == b.jc_room_temperature && a.equation_of_state == b.equation_of_state &&
-         a.strength_model == b.strength_model &&
-         a.tillotson_a == b.tillotson_a && a.tillotson_b == b.tillotson_b &&
-         a.tillotson_bulk_modulus == b.tillotson_bulk_modulus &&
-         a.tillotson_nonlinear_modulus == b.tillotson_nonlinear_modulus && a.tillotson_energy == b.tillotson_energy &&
-         a.tillotson_incipient_vaporisation == b.tillotson_incipient_vaporisation &&
-         a.tillotson_complete_vaporisation == b.tillotson_complete_vaporisation &&
-         a.tillotson_alpha == b.tillotson_alpha && a.tillotson_beta == b.tillotson_beta &&
-         a.softening_temperature == b.softening_temperature && a.melt_temperature == b.melt_temperature &&
-         a.lindemann_a == b.lindemann_a && a.pressure_hardening_scale == b.pressure_hardening_scale &&
-         a.yield_stress_max == b.yield_stress_max && a.latent_heat == b.latent_heat;
 }
 
 const std::string& Scene::material_name(Body b) const {

@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <variant>
 
-#include "mpmshock/tillotson.hpp"
+#include "mpmshock/mixed_equation_of_state.hpp"
 
 namespace mpmshock {
 
@@ -25,11 +27,17 @@ struct WalshChristian {
 HugoniotTemperature::HugoniotTemperature(const Material& mat, TemperatureModel model, bool report_paper,
                                          int intervals)
     : model_(model), report_paper_(report_paper), eos_(mat), cv_(mat.specific_heat), T0_(mat.initial_temperature), gamma0_(mat.gruneisen_gamma) {
-  // Equations of state without a Hugoniot in closed form take the isentrope (one line each).
-  if (mat.equation_of_state == EquationOfStateModel::tillotson) {
-    tabulate_isentrope(Tillotson(mat), intervals);
-    return;
-  }
+  // Equations of state without a Hugoniot in closed form take the isentrope.
+  bool isentrope = false;
+  std::visit(
+      [&](const auto& law) {
+        if constexpr (!std::decay_t<decltype(law)>::kHugoniotReference) {
+          tabulate_isentrope(law, intervals);
+          isentrope = true;
+        }
+      },
+      equation_of_state_of(mat));
+  if (isentrope) return;
   // Down to the smallest J the equation of state admits, short of the pole where T_H diverges
   // (eos.hpp): every state the point update admits has a finite temperature.
   J_min_ = eos_.limiting_compression();

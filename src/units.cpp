@@ -198,4 +198,10 @@ double parse_quantity(std::string_view raw, Dimension dim) {
   throw std::invalid_argument(msg);
 }
 
+std::string format_number(double v) {
+  char buf[64];
+  auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);  // shortest text that reads back exactly
+  return ec == std::errc() ? std::string(buf, ptr) : std::string("nan");
+}
+
 }  // namespace mpmshock

@@ -34,6 +34,11 @@ namespace mpmshock {
 
 class MieGruneisen {
  public:
+  // The word equation_of_state takes for it, and whether its temperature's reference curve is its
+  // Hugoniot in closed form (temperature.hpp; false: the isentrope, tabulated).
+  static constexpr EquationOfStateModel kModel = EquationOfStateModel::mie_gruneisen;
+  static constexpr bool kHugoniotReference = true;
+
   MieGruneisen() = default;
   explicit MieGruneisen(const Material& mat)
       : rho0_(mat.density), c0_(mat.sound_speed), s_(mat.hugoniot_slope), gamma0_(mat.gruneisen_gamma),

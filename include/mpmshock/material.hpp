@@ -96,20 +96,7 @@ struct Material {
   }
 };
 
-// The material without Johnson-Cook constants (jc_yield_stress = 0 and the rest 0): what the
-// library's tantalum, LiF and PMMA and a scene's new material are until given them; strength_model =
-// johnson_cook refuses it.
-Material without_johnson_cook(Material m);
-
-// The material without Steinberg-Guinan softening constants (melt_temperature = 0 and the rest 0):
-// the library's tantalum and PMMA; thermal_softening = on refuses it.
-Material without_softening(Material m);
-
-// The material without Tillotson constants (tillotson_bulk_modulus = 0): the library's copper,
-// tantalum, LiF and PMMA; equation_of_state = tillotson refuses it.
-Material without_tillotson(Material m);
-
-// Whether two materials have every constant equal.
+// Whether two materials have every constant equal (each law's keys, src/laws/registry.cpp).
 bool same_constants(const Material& a, const Material& b);
 
 // A material of the built-in library (material_library.cpp): its name as scenes write it

@@ -4,6 +4,7 @@
 // its own kernels cost a branch on the law per call.
 #pragma once
 
+#include <cstddef>
 #include <variant>
 
 #include "mpmshock/eos.hpp"
@@ -11,8 +12,18 @@
 
 namespace mpmshock {
 
-// One material's equation of state (model.cpp: equation_of_state_of): the list of the laws.
+// The list of the equations of state a material may take (the registry's, src/laws/registry.cpp,
+// declares their keys); each type names its word as kModel.
 using EquationOfStateLaw = std::variant<MieGruneisen, Tillotson>;
+
+// A material's equation of state: the law of the list whose kModel its equation_of_state names.
+template <std::size_t I = 0>
+EquationOfStateLaw equation_of_state_of(const Material& mat) {
+  using Law = std::variant_alternative_t<I, EquationOfStateLaw>;
+  if constexpr (I + 1 < std::variant_size_v<EquationOfStateLaw>)
+    if (mat.equation_of_state != Law::kModel) return equation_of_state_of<I + 1>(mat);
+  return Law(mat);
+}
 
 class MixedEquationOfState {
   EquationOfStateLaw law_;

@@ -45,8 +45,6 @@ using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape
 std::array<StrengthLaw, kBodies> strength_laws(const Scene& s);
 // The Johnson-Cook law of a body's strength, direct or mixed; null for any other law.
 const JohnsonCook* johnson_cook_of(const StrengthLaw& law);
-// A material's equation of state.
-EquationOfStateLaw equation_of_state_of(const Material& mat);
 // The Lindemann melt curve of a material, and its Steinberg-Guinan softening (thermal_softening.hpp).
 MeltCurve melt_curve_of(const Material& mat);
 ThermalSoftening softening_of(const Material& mat);

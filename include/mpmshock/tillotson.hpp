@@ -28,6 +28,11 @@ namespace mpmshock {
 
 class Tillotson {
  public:
+  // The word equation_of_state takes for it; its temperature is referenced to its isentrope
+  // (Tillotson has no Hugoniot in closed form; temperature.hpp tabulates it).
+  static constexpr EquationOfStateModel kModel = EquationOfStateModel::tillotson;
+  static constexpr bool kHugoniotReference = false;
+
   Tillotson() = default;
   explicit Tillotson(const Material& mat)
       : rho0_(mat.density), a_(mat.tillotson_a), b_(mat.tillotson_b), A_(mat.tillotson_bulk_modulus),

@@ -39,4 +39,7 @@ double parse_quantity(std::string_view text, Dimension dim);
 // Parses a plain finite number with no unit; throws std::invalid_argument.
 double parse_number(std::string_view text);
 
+// The shortest text that reads back as exactly v ("1.5e-05"), as messages and scene.txt print numbers.
+std::string format_number(double v);
+
 }  // namespace mpmshock

@@ -1,0 +1,57 @@
+// The registry of material laws: one line per law, in the order their keys are listed (--keys).
+// A new law is its file in this folder (its keys, checks and constants' meaning), its line here,
+// its test and its row in the docs; its physics lives in its header (eos.hpp, tillotson.hpp, ...).
+#include <stdexcept>
+
+#include "mpmshock/material_law.hpp"
+
+namespace mpmshock {
+
+// Each law's declaration, in its own file here (src/laws/NAME.cpp).
+MaterialLaw solid_law();
+MaterialLaw mie_gruneisen_law();
+MaterialLaw tillotson_law();
+MaterialLaw bilinear_law();
+MaterialLaw johnson_cook_law();
+MaterialLaw steinberg_guinan_law();
+
+const std::vector<MaterialLaw>& material_laws() {
+  static const std::vector<MaterialLaw> laws = {
+      solid_law(),
+      bilinear_law(),
+      johnson_cook_law(),
+      mie_gruneisen_law(),
+      tillotson_law(),
+      steinberg_guinan_law(),
+  };
+  return laws;
+}
+
+const MaterialLaw& material_law(const std::string& name) {
+  for (const MaterialLaw& law : material_laws())
+    if (law.name == name) return law;
+  throw std::logic_error("no material law named " + name);
+}
+
+Material without(const std::string& name, Material m) {
+  for (const MaterialKey& key : material_law(name).keys) {
+    if (key.reference) continue;
+    if (const auto* field = std::get_if<double Material::*>(&key.field))
+      m.*(*field) = 0.0;
+    else
+      m.*std::get<bool Material::*>(key.field) = false;
+  }
+  return m;
+}
+
+bool same_constants(const Material& a, const Material& b) {
+  if (a.equation_of_state != b.equation_of_state || a.strength_model != b.strength_model) return false;
+  for (const MaterialLaw& law : material_laws())
+    for (const MaterialKey& key : law.keys) {
+      const bool same = std::visit([&](auto field) { return a.*field == b.*field; }, key.field);
+      if (!same) return false;
+    }
+  return true;
+}
+
+}  // namespace mpmshock

@@ -1,0 +1,68 @@
+// Tillotson's equation of state (tillotson.hpp): compressed, cold expanded, mixed and vapour branches.
+#include "mpmshock/material_law.hpp"
+#include "mpmshock/scene.hpp"
+
+namespace mpmshock {
+
+MaterialLaw tillotson_law() {
+  using D = Dimension;
+  MaterialLaw law;
+  law.slot = LawSlot::equation_of_state;
+  law.name = "tillotson";
+  law.choice = static_cast<int>(EquationOfStateModel::tillotson);
+  law.summary = "tillotson: Tillotson's compressed, expanded and vapour branches with the tillotson_* keys (built-in "
+                "constants: aluminium)";
+  law.effect = "Tillotson equation of state (compressed, expanded and vapour branches)";
+  law.keys = {
+      {"tillotson_a", D::none, closed_bound(0.0, 10.0), "0.5",
+       "Tillotson a (equation_of_state = tillotson; aluminium, Tillotson 1962)", &Material::tillotson_a},
+      {"tillotson_b", D::none, closed_bound(0.0, 10.0), "1.63", "Tillotson b", &Material::tillotson_b},
+      {"tillotson_bulk_modulus", D::pressure, non_negative_bound(), "75.2 GPa",
+       "Tillotson A, the bulk modulus of the reference state; 0: the material has no Tillotson constants",
+       &Material::tillotson_bulk_modulus},
+      {"tillotson_nonlinear_modulus", D::pressure, non_negative_bound(), "65 GPa",
+       "Tillotson B, the coefficient of mu^2 (mu = rho/rho0 - 1)", &Material::tillotson_nonlinear_modulus},
+      {"tillotson_energy", D::specific_energy, non_negative_bound(), "5 MJ/kg",
+       "Tillotson E0, the energy scale of the b term", &Material::tillotson_energy},
+      {"tillotson_incipient_vaporisation", D::specific_energy, non_negative_bound(), "2.7 MJ/kg",
+       "Tillotson E_iv: expanded material below it follows the cold (compressed) branch",
+       &Material::tillotson_incipient_vaporisation},
+      {"tillotson_complete_vaporisation", D::specific_energy, non_negative_bound(), "14.1 MJ/kg",
+       "Tillotson E_cv: expanded material above it follows the vapour branch; between E_iv and "
+       "E_cv the pressure is interpolated in E",
+       &Material::tillotson_complete_vaporisation},
+      {"tillotson_alpha", D::none, closed_bound(0.0, 100.0), "5",
+       "Tillotson alpha, the decay of the vapour branch's b term with expansion", &Material::tillotson_alpha},
+      {"tillotson_beta", D::none, closed_bound(0.0, 100.0), "5",
+       "Tillotson beta, the decay of the vapour branch's A term with expansion", &Material::tillotson_beta},
+  };
+  law.used = [](const Scene&, const Material& m) { return m.equation_of_state == EquationOfStateModel::tillotson; };
+  law.check = [](const MaterialCheck& c) {
+    const Material& m = c.material;
+    if (!m.has_tillotson())
+      c.fail(c.prefix + "equation_of_state", "is tillotson, but " + c.named() + " has no Tillotson constants: give its " +
+                                                 c.prefix + "tillotson_* keys (mpmshock --keys)");
+    else if (!(m.tillotson_energy > 0.0))
+      c.fail(c.prefix + "tillotson_energy", "must be > 0 with equation_of_state = tillotson (" + c.named() + ")");
+    else if (!(m.tillotson_complete_vaporisation > m.tillotson_incipient_vaporisation))
+      c.fail(c.prefix + "tillotson_complete_vaporisation",
+             "must exceed tillotson_incipient_vaporisation (" + c.named() + ")");
+    if (m.bound_expansion)
+      c.fail(c.prefix + "bounded_expansion", "is Mie-Grüneisen's expanded branch; Tillotson has its own (" + c.named() +
+                                                 "): leave it off with equation_of_state = tillotson");
+  };
+  // The paper's model adds the plastic heat to the reference curve's temperature, which carries the
+  // shock heating only where that curve is the Hugoniot.
+  law.check_scene = [](const Scene& s, const std::string&, const auto& fail) {
+    if (s.effects.thermal && s.temperature_model == TemperatureModel::paper)
+      fail("temperature_model", "paper needs equation_of_state = mie_gruneisen: it adds the plastic heat to the "
+                                "Hugoniot's temperature, and Tillotson's reference is its isentrope (the shock "
+                                "heating would be lost)");
+    if (s.effects.thermal && s.paper_temperature)
+      fail("paper_temperature", "needs equation_of_state = mie_gruneisen: the paper's model adds the plastic heat "
+                                "to the Hugoniot's temperature, and Tillotson's reference is its isentrope");
+  };
+  return law;
+}
+
+}  // namespace mpmshock

@@ -1,0 +1,96 @@
+// The registry of material laws (src/laws/): every constant of Material is declared by exactly one
+// law, each key reads and writes its own field through the scene, a law's "without" mark is what its
+// check refuses, and each law's checks and scene checks reach the user under the key that chose it.
+#include <set>
+#include <string>
+
+#include "check.hpp"
+#include "mpmshock/material_law.hpp"
+#include "mpmshock/scene.hpp"
+
+using namespace mpmshock;
+
+static Scene parse(const std::string& text) { return parse_scene(text, "t.scene", {}); }
+
+// The text of the SceneError a scene raises ("" if none).
+static std::string error_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+int main() {
+  // Every field is one law's key: a field no law declares would be missed by same_constants, the
+  // scene's keys, scene.txt and restart. Material holds two law choices (enums) and the keys'
+  // doubles and flags; each flag sits in 8 bytes of its own between the doubles.
+  std::set<std::string> names;
+  std::size_t doubles = 0, flags = 0, keys = 0;
+  for (const MaterialLaw& law : material_laws())
+    for (const MaterialKey& key : law.keys) {
+      CHECK(names.insert(key.name).second);  // no key declared twice
+      ++keys;
+      if (std::holds_alternative<double Material::*>(key.field)) ++doubles;
+      else ++flags;
+    }
+  CHECK(sizeof(Material) == 8 * (1 + doubles + flags));
+  CHECK(keys == 37);
+
+  // Each key sets its own field and no other (as the bare key and as material.NAME.KEY), and
+  // same_constants sees each.
+  for (const MaterialLaw& law : material_laws())
+    for (const MaterialKey& key : law.keys) {
+      const auto* field = std::get_if<double Material::*>(&key.field);
+      if (!field) continue;
+      Material base;
+      // A value other than the default, inside the key's range.
+      const double v0 = base.*(*field);
+      double changed = v0;
+      for (const double c : {v0 * 0.9, v0 * 1.1, 1.0})
+        if (c != v0 && (key.range.lo_open ? c > key.range.lo : c >= key.range.lo) &&
+            (key.range.hi_open ? c < key.range.hi : c <= key.range.hi)) {
+          changed = c;
+          break;
+        }
+      CHECK(changed != v0);
+      const std::string value = format_number(changed);
+      const Scene bare = parse(key.name + " = " + value + "\n");
+      Material expected = base;
+      expected.*(*field) = changed;
+      CHECK(same_constants(bare.material, expected));
+      CHECK(!same_constants(bare.material, base));
+      const Scene named = parse("material.mine." + key.name + " = " + value + "\n");
+      CHECK(named.materials.at("mine").*(*field) == changed);
+    }
+
+  // without(law) zeroes the law's constants (the library's mark of a material without them) and
+  // keeps the reference values (Johnson-Cook's room temperature).
+  const Material none = without("johnson_cook", without("tillotson", without("steinberg_guinan", Material{})));
+  CHECK(!none.has_johnson_cook() && !none.has_tillotson() && !none.has_softening());
+  CHECK(none.jc_room_temperature == 298.0);
+  CHECK(none.density == Material{}.density && none.yield_stress == Material{}.yield_stress);
+
+  // The slot keys list their laws from the registry: an unknown word names every law of the slot.
+  const std::string eos = error_of("equation_of_state = ideal_gas\n");
+  CHECK(eos.find("mie_gruneisen") != std::string::npos && eos.find("tillotson") != std::string::npos);
+  const std::string strength = error_of("strength_model = zerilli\n");
+  CHECK(strength.find("bilinear") != std::string::npos && strength.find("johnson_cook") != std::string::npos);
+
+  // A law's check runs for the materials bodies take, under the key that names the material's constant.
+  const std::string no_jc = error_of(
+      "flyer_material = tantalum\nmaterial.tantalum.strength_model = johnson_cook\nporosity = 1\n");
+  CHECK(no_jc.find("material.tantalum.jc_yield_stress") != std::string::npos);
+  // ... and not for a material no body takes.
+  CHECK(error_of("material.tantalum.strength_model = johnson_cook\nporosity = 1\n").empty());
+  // A law's scene check runs once, named by the key that chose it.
+  const std::string jc_paper = error_of("strength_model = johnson_cook\ntemperature_model = paper\nporosity = 1\n");
+  CHECK(jc_paper.find("t.scene:1: key 'strength_model': johnson_cook cannot go with temperature_model = paper") !=
+        std::string::npos);
+  CHECK(jc_paper.find("cannot go") == jc_paper.rfind("cannot go"));
+  // Steinberg-Guinan's check runs only with thermal_softening = on and a bilinear body.
+  CHECK(!error_of("flyer_material = tantalum\ntarget_material = tantalum\nthermal_softening = on\nporosity = 1\n").empty());
+  CHECK(error_of("flyer_material = tantalum\ntarget_material = tantalum\nporosity = 1\n").empty());
+  return check::result();
+}
