@@ -204,8 +204,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
       (s.has_window() && s.material_of(Body::window).bound_expansion))
     on.push_back("bounded expansion (Rose binding curve)");
   // The laws that name themselves (the registry's, src/laws/), each once if any body takes it.
+  const std::vector<std::string> names = s.materials_in_use();
   for (const MaterialLaw& law : material_laws()) {
-    const std::vector<std::string> names = s.materials_in_use();
     if (!law.effect.empty() && std::any_of(names.begin(), names.end(), [&](const std::string& name) {
           return law.used(s, s.material_by_name(name));
         }))

@@ -63,7 +63,7 @@ std::array<EquationOfState, kBodies> equations_of_state(const std::array<const M
 // isotropic hardening (when another body needs it, so that the bodies' laws are one type).
 StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
   if (!s.effects.plasticity) return NoStrength{};
-  if (mat.strength_model == StrengthModel::johnson_cook) return JohnsonCook(mat);  // isotropic, its own softening (scene.cpp)
+  if (mat.strength_model == StrengthModel::johnson_cook) return JohnsonCook(mat);  // isotropic, its own softening (src/laws/johnson_cook.cpp)
   const bool isotropic = mat.hardening_beta == 1.0 && !back_stress;
   if (s.effects.thermal_softening) {
     if (isotropic) return VonMises<false, true>(mat, softening_of(mat));

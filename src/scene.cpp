@@ -19,6 +19,7 @@
 #include <variant>
 
 #include "mpmshock/material_law.hpp"
+#include "mpmshock/mixed_equation_of_state.hpp"
 #include "mpmshock/units.hpp"
 
 namespace mpmshock {
@@ -92,25 +93,12 @@ std::string trim(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 
-struct Range {
-  double lo = -kInf, hi = kInf;
-  bool lo_open = false, hi_open = false;
-
-  bool contains(double v) const {
-    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-  }
-  std::string describe(std::string_view unit) const {
-    const std::string u = unit.empty() ? "" : " " + std::string(unit);
-    std::string out;
-    if (lo > -kInf) out += std::string(lo_open ? "> " : ">= ") + format_number(lo) + u;
-    if (hi < kInf) out += std::string(out.empty() ? "" : " and ") + (hi_open ? "< " : "<= ") + format_number(hi) + u;
-    return out;
-  }
-};
-Range positive() { return {0.0, kInf, true, false}; }
-Range non_negative() { return {0.0, kInf, false, false}; }
-Range open(double lo, double hi) { return {lo, hi, true, true}; }
-Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+// A key's range: the one type the material laws' keys declare theirs with (material_law.hpp).
+using Range = Bounds;
+Range positive() { return positive_bound(); }
+Range non_negative() { return non_negative_bound(); }
+Range open(double lo, double hi) { return open_bound(lo, hi); }
+Range closed(double lo, double hi) { return closed_bound(lo, hi); }
 
 enum class Kind { quantity, integer, flag, text, choice, times };
 
@@ -305,8 +293,7 @@ void append_material_keys(std::vector<Key>& k) {
                            &Material::strength_model));
     for (const MaterialKey& mk : law.keys) {
       if (const auto* field = std::get_if<double Material::*>(&mk.field)) {
-        const Range range{mk.range.lo, mk.range.hi, mk.range.lo_open, mk.range.hi_open};
-        k.push_back(quantity(mk.name, mk.dim, range, mk.default_text, mk.meaning,
+        k.push_back(quantity(mk.name, mk.dim, mk.range, mk.default_text, mk.meaning,
                              [f = *field](auto& s) -> auto& { return s.material.*f; }));
       } else {
         k.push_back(flag(mk.name, mk.default_text, mk.meaning,
@@ -821,6 +808,18 @@ bool is_multiple(double length, double unit) {
   return n >= 1 && std::abs(n * unit - length) <= 1e-9 * length;
 }
 
+// The key that chooses a law of the slot: a material key (equation_of_state, strength_model), the
+// scene's effect (thermal_softening), or none (every material has the law).
+std::string choosing_key(LawSlot slot) {
+  switch (slot) {
+    case LawSlot::equation_of_state: return "equation_of_state";
+    case LawSlot::strength: return "strength_model";
+    case LawSlot::softening: return "thermal_softening";
+    case LawSlot::always: break;
+  }
+  return "";
+}
+
 // Checks that involve more than one key. `at` finds where a key was set (or "defaults").
 void check_consistency(const Scene& s, const std::function<Origin(const std::string&)>& at, SceneErrors& errors) {
   auto fail = [&](const std::string& key, const std::string& msg) { errors.add(at(key), error_at(at(key), key, msg).what()); };
@@ -882,23 +881,20 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
                   " (mpmshock --materials lists the built-in ones; material.NAME.KEY keys define new ones)");
     materials_known = false;
   }
-  // Each law a body's material takes checks that material's constants, and once the scene settings it
-  // cannot go with (src/laws/), named by the key that chose it for its first body.
+  // Each law a body's material takes checks the scene settings it cannot go with, once, named by the
+  // key that chose it for its first body, then each such material's constants (src/laws/).
   if (materials_known)
     for (const MaterialLaw& law : material_laws()) {
-      const char* slot_key = law.slot == LawSlot::equation_of_state ? "equation_of_state"
-                             : law.slot == LawSlot::strength        ? "strength_model"
-                                                                    : "thermal_softening";
-      std::string chosen_by;
-      for (const std::string& name : s.materials_in_use()) {
-        const Material& m = s.material_by_name(name);
-        if (!law.used(s, m)) continue;
-        law.check(MaterialCheck{s, m, name, material_key_prefix(name), fail});
-        // (A named material's law the bare key set is named by the bare key.)
-        const std::string own = material_key_prefix(name) + slot_key;
-        if (chosen_by.empty()) chosen_by = s.origin.count(own) ? own : slot_key;
-      }
-      if (!chosen_by.empty()) law.check_scene(s, chosen_by, fail);
+      std::vector<std::string> takers;  // the materials in use that take the law
+      for (const std::string& name : s.materials_in_use())
+        if (law.used(s, s.material_by_name(name))) takers.push_back(name);
+      if (takers.empty()) continue;
+      const std::string chooser = choosing_key(law.slot);
+      // (A named material's law the bare key set is named by the bare key.)
+      const std::string own = chooser.empty() ? chooser : material_key_prefix(takers.front()) + chooser;
+      law.check_scene(s, s.origin.count(own) ? own : chooser, fail);
+      for (const std::string& name : takers)
+        law.check(MaterialCheck{s, s.material_by_name(name), name, material_key_prefix(name), fail});
     }
   if (s.has_window() && !is_multiple(s.window_height, a))
     fail("window_height", "must be a whole number of material-point spacings (cell_size / particles_per_cell = " +
@@ -955,9 +951,7 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
   for (const Body b : {Body::flyer, Body::target, Body::window}) {
     if (b == Body::window && !s.has_window()) continue;
     const Material& mat = materials_known ? s.material_of(b) : s.material;
-    const double c0 = mat.equation_of_state == EquationOfStateModel::tillotson
-                          ? std::sqrt(mat.tillotson_bulk_modulus / mat.density)
-                          : mat.sound_speed;
+    const double c0 = reference_sound_speed_of(mat);
     const double cL2 = c0 * c0 +
                        (s.effects.plasticity ? (4.0 / 3.0) * mat.shear_modulus() / mat.density : 0.0);
     signal = std::max(signal, std::sqrt(cL2) + (b == Body::flyer ? s.flyer_velocity : s.target_velocity));

@@ -1,11 +1,15 @@
 // The registry of material laws (src/laws/): every constant of Material is declared by exactly one
 // law, each key reads and writes its own field through the scene, a law's "without" mark is what its
 // check refuses, and each law's checks and scene checks reach the user under the key that chose it.
+#include <cstddef>
 #include <set>
+#include <utility>
+#include <variant>
 #include <string>
 
 #include "check.hpp"
 #include "mpmshock/material_law.hpp"
+#include "mpmshock/mixed_equation_of_state.hpp"
 #include "mpmshock/scene.hpp"
 
 using namespace mpmshock;
@@ -22,28 +26,75 @@ static std::string error_of(const std::string& text) {
   return "";
 }
 
+// The number of members of an aggregate: the most initializers T{...} takes (each converting to
+// whatever the member is).
+struct AnyField {
+  template <class T>
+  operator T() const {
+    return T{};
+  }
+};
+template <class T, std::size_t... I>
+constexpr auto takes(std::index_sequence<I...>) -> decltype(T{(void(I), AnyField{})...}, true) {
+  return true;
+}
+template <class T>
+constexpr bool takes(...) {
+  return false;
+}
+template <class T, std::size_t N = 1>
+constexpr std::size_t field_count() {
+  if constexpr (takes<T>(std::make_index_sequence<N>{}))
+    return field_count<T, N + 1>();
+  else
+    return N - 1;
+}
+
 int main() {
   // Every field is one law's key: a field no law declares would be missed by same_constants, the
-  // scene's keys, scene.txt and restart. Material holds two law choices (enums) and the keys'
-  // doubles and flags; each flag sits in 8 bytes of its own between the doubles.
+  // scene's keys, scene.txt and restart. Material is its two law choices (equation_of_state,
+  // strength_model) and the keys' fields, each key a field of its own.
   std::set<std::string> names;
-  std::size_t doubles = 0, flags = 0, keys = 0;
+  std::set<std::ptrdiff_t> offsets;
+  std::size_t keys = 0;
+  const Material probe;
   for (const MaterialLaw& law : material_laws())
     for (const MaterialKey& key : law.keys) {
       CHECK(names.insert(key.name).second);  // no key declared twice
       ++keys;
-      if (std::holds_alternative<double Material::*>(key.field)) ++doubles;
-      else ++flags;
+      const char* at = std::visit([&](auto field) { return reinterpret_cast<const char*>(&(probe.*field)); }, key.field);
+      CHECK(offsets.insert(at - reinterpret_cast<const char*>(&probe)).second);  // nor one field by two keys
     }
-  CHECK(sizeof(Material) == 8 * (1 + doubles + flags));
-  CHECK(keys == 37);
+  static_assert(field_count<Material>() > 2);
+  CHECK(field_count<Material>() == 2 + keys);
+
+  // Each slot's laws have words of their own, and every equation of state of the kernels' list is a
+  // law of the registry by its word.
+  for (const LawSlot slot : {LawSlot::equation_of_state, LawSlot::strength}) {
+    std::set<int> choices;
+    for (const MaterialLaw& law : material_laws())
+      if (law.slot == slot) CHECK(choices.insert(law.choice).second);
+  }
+  auto registered = [](EquationOfStateModel model) {
+    for (const MaterialLaw& law : material_laws())
+      if (law.slot == LawSlot::equation_of_state && law.choice == static_cast<int>(model)) return true;
+    return false;
+  };
+  CHECK(registered(MieGruneisen::kModel) && registered(Tillotson::kModel));
+  CHECK(std::variant_size_v<EquationOfStateLaw> == 2);  // a new law: add it to the line above
 
   // Each key sets its own field and no other (as the bare key and as material.NAME.KEY), and
   // same_constants sees each.
   for (const MaterialLaw& law : material_laws())
     for (const MaterialKey& key : law.keys) {
       const auto* field = std::get_if<double Material::*>(&key.field);
-      if (!field) continue;
+      if (!field) {  // a flag: on, bare and named
+        const auto flag = std::get<bool Material::*>(key.field);
+        CHECK(!(Material{}.*flag));
+        CHECK(parse(key.name + " = on\n").material.*flag);
+        CHECK(parse("material.mine." + key.name + " = on\n").materials.at("mine").*flag);
+        continue;
+      }
       Material base;
       // A value other than the default, inside the key's range.
       const double v0 = base.*(*field);
@@ -84,11 +135,17 @@ int main() {
   CHECK(no_jc.find("material.tantalum.jc_yield_stress") != std::string::npos);
   // ... and not for a material no body takes.
   CHECK(error_of("material.tantalum.strength_model = johnson_cook\nporosity = 1\n").empty());
-  // A law's scene check runs once, named by the key that chose it.
-  const std::string jc_paper = error_of("strength_model = johnson_cook\ntemperature_model = paper\nporosity = 1\n");
+  // A law's scene check runs once however many bodies take it, named by the key that chose it for
+  // the first: the bare key ...
+  const std::string jc_paper = error_of(
+      "strength_model = johnson_cook\ntemperature_model = paper\nporosity = 1\nflyer_material = copper\n");
   CHECK(jc_paper.find("t.scene:1: key 'strength_model': johnson_cook cannot go with temperature_model = paper") !=
         std::string::npos);
   CHECK(jc_paper.find("cannot go") == jc_paper.rfind("cannot go"));
+  // ... or the material's own.
+  const std::string jc_named = error_of(
+      "flyer_material = copper\nmaterial.copper.strength_model = johnson_cook\ntemperature_model = paper\nporosity = 1\n");
+  CHECK(jc_named.find("t.scene:2: key 'material.copper.strength_model': johnson_cook cannot go") != std::string::npos);
   // Steinberg-Guinan's check runs only with thermal_softening = on and a bilinear body.
   CHECK(!error_of("flyer_material = tantalum\ntarget_material = tantalum\nthermal_softening = on\nporosity = 1\n").empty());
   CHECK(error_of("flyer_material = tantalum\ntarget_material = tantalum\nporosity = 1\n").empty());

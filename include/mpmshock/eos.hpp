@@ -38,6 +38,8 @@ class MieGruneisen {
   // Hugoniot in closed form (temperature.hpp; false: the isentrope, tabulated).
   static constexpr EquationOfStateModel kModel = EquationOfStateModel::mie_gruneisen;
   static constexpr bool kHugoniotReference = true;
+  // The reference bulk sound speed from the constants alone (scene checks, before they are checked).
+  static double sound_speed_of(const Material& mat) { return mat.sound_speed; }
 
   MieGruneisen() = default;
   explicit MieGruneisen(const Material& mat)

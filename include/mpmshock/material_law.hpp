@@ -2,12 +2,14 @@
 // are set by (unit, range, default, meaning) and its checks of them. The registry
 // (src/laws/registry.cpp) lists them, one line per law; the scene's key table, --keys, docs/keys.md,
 // scene.txt, same_constants and the library's "without" marks all iterate it, so a new law's
-// constants are declared in its own file under src/laws/ and nowhere else.
+// constants' keys and checks are declared in its own file under src/laws/ (its constants' fields are
+// Material's, material.hpp).
 #pragma once
 
 #include <functional>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -18,11 +20,22 @@ namespace mpmshock {
 
 struct Scene;
 
-// The values a key admits: lo .. hi, each end open or closed.
+// The values a key admits: lo .. hi, each end open or closed (every key's, scene.cpp).
 struct Bounds {
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false;
+
+  bool contains(double v) const { return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi); }
+  // "> 0 m/s and <= 100000 m/s", for errors and --keys.
+  std::string describe(std::string_view unit) const {
+    const std::string u = unit.empty() ? "" : " " + std::string(unit);
+    std::string out;
+    if (lo > -std::numeric_limits<double>::infinity()) out += std::string(lo_open ? "> " : ">= ") + format_number(lo) + u;
+    if (hi < std::numeric_limits<double>::infinity())
+      out += std::string(out.empty() ? "" : " and ") + (hi_open ? "< " : "<= ") + format_number(hi) + u;
+    return out;
+  }
 };
 inline Bounds positive_bound() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
 inline Bounds non_negative_bound() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }

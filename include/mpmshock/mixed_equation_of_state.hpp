@@ -4,6 +4,7 @@
 // its own kernels cost a branch on the law per call.
 #pragma once
 
+#include <cassert>
 #include <cstddef>
 #include <variant>
 
@@ -22,7 +23,19 @@ EquationOfStateLaw equation_of_state_of(const Material& mat) {
   using Law = std::variant_alternative_t<I, EquationOfStateLaw>;
   if constexpr (I + 1 < std::variant_size_v<EquationOfStateLaw>)
     if (mat.equation_of_state != Law::kModel) return equation_of_state_of<I + 1>(mat);
+  assert(mat.equation_of_state == Law::kModel);  // every word is some law's kModel
   return Law(mat);
+}
+
+// A material's reference bulk sound speed from its law's constants alone, without building the law
+// (the scene's checks call it before they have checked the constants).
+template <std::size_t I = 0>
+double reference_sound_speed_of(const Material& mat) {
+  using Law = std::variant_alternative_t<I, EquationOfStateLaw>;
+  if constexpr (I + 1 < std::variant_size_v<EquationOfStateLaw>)
+    if (mat.equation_of_state != Law::kModel) return reference_sound_speed_of<I + 1>(mat);
+  assert(mat.equation_of_state == Law::kModel);
+  return Law::sound_speed_of(mat);
 }
 
 class MixedEquationOfState {

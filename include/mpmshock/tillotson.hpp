@@ -32,6 +32,8 @@ class Tillotson {
   // (Tillotson has no Hugoniot in closed form; temperature.hpp tabulates it).
   static constexpr EquationOfStateModel kModel = EquationOfStateModel::tillotson;
   static constexpr bool kHugoniotReference = false;
+  // The reference bulk sound speed sqrt(A / rho0) from the constants alone (scene checks).
+  static double sound_speed_of(const Material& mat) { return std::sqrt(mat.tillotson_bulk_modulus / mat.density); }
 
   Tillotson() = default;
   explicit Tillotson(const Material& mat)

@@ -1,6 +1,7 @@
-// The registry of material laws: one line per law, in the order their keys are listed (--keys).
-// A new law is its file in this folder (its keys, checks and constants' meaning), its line here,
-// its test and its row in the docs; its physics lives in its header (eos.hpp, tillotson.hpp, ...).
+// The registry of material laws: one line per law, in the order their keys are listed (--keys) and
+// their checks run. A new law is its file in this folder (its keys and checks) and its line in
+// src/CMakeLists.txt, its line and declaration here, its constants' fields in material.hpp, its
+// physics in its header (eos.hpp, tillotson.hpp, ...) and its test (docs/adding-an-effect.md).
 #include <stdexcept>
 
 #include "mpmshock/material_law.hpp"
@@ -19,10 +20,10 @@ const std::vector<MaterialLaw>& material_laws() {
   static const std::vector<MaterialLaw> laws = {
       solid_law(),
       bilinear_law(),
+      steinberg_guinan_law(),
       johnson_cook_law(),
       mie_gruneisen_law(),
       tillotson_law(),
-      steinberg_guinan_law(),
   };
   return laws;
 }
