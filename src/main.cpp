@@ -26,7 +26,7 @@ namespace {
 constexpr const char* kUsage = R"(usage: mpmshock SCENE [--set key=value]... [--check] [--quiet] [--force] [--threads N [--fixed-threads]]
        mpmshock --restart SNAPSHOT [--set key=value]... [--check] [--quiet] [--force] [--threads N [--fixed-threads]]
        mpmshock --resolve SCENE [--set key=value]...
-       mpmshock --help | --version | --keys | --materials
+       mpmshock --help | --version | --keys | --materials | --laws
 
 Runs the material-point simulation of the impact that SCENE (a key = value file) describes and
 writes regions.csv, conservation.csv, HDF5 snapshots (with snapshots.xdmf for ParaView) and
@@ -47,6 +47,8 @@ summary.json into its output_dir.
                    --set overrides and the defaults: the scene.txt the run would write) and exit
   --keys           print the table of scene keys (unit, default, meaning) and exit
   --materials      print the built-in materials (every constant and its source) and exit
+  --laws           print the laws a material is built from (equations of state, strength laws,
+                   softening), which built-in materials carry their constants, and their keys
   --help           this text
   --version        the version, the commit it was built from, the compiler and its flags
 
@@ -98,6 +100,9 @@ Args parse_args(int argc, char** argv) {
       finish(0);
     } else if (arg == "--materials") {
       if (speaks()) std::fputs(mpmshock::material_library_text().c_str(), stdout);
+      finish(0);
+    } else if (arg == "--laws") {
+      if (speaks()) std::fputs(mpmshock::material_laws_text().c_str(), stdout);
       finish(0);
     } else if (arg == "--set") {
       a.overrides.push_back(value("--set"));

@@ -1200,6 +1200,31 @@ std::string material_library_text() {
   return out;
 }
 
+std::string material_laws_text() {
+  std::string out =
+      "# The laws a material is built from (src/laws/): each body's material takes one equation of state\n"
+      "# and, with plasticity = on, one strength law; the keys after each law set its constants\n"
+      "# (bare for the scene's own material, material.NAME.KEY for a named one; mpmshock --keys gives\n"
+      "# their units and defaults). 'built in for' names the library materials that carry its constants.\n";
+  for (const MaterialLaw& law : material_laws()) {
+    const std::string chooser = choosing_key(law.slot);
+    std::string chosen_by = law.slot == LawSlot::always    ? "every material"
+                            : law.slot == LawSlot::softening ? "thermal_softening = on, on bodies of the bilinear law"
+                                                             : chooser + " = " + law.name;
+    const bool first_of_slot = &law == &*std::find_if(material_laws().begin(), material_laws().end(),
+                                                       [&](const MaterialLaw& l) { return l.slot == law.slot; });
+    if (law.slot != LawSlot::always && law.slot != LawSlot::softening && first_of_slot) chosen_by += ", the default";
+    std::string built_in;
+    for (const LibraryMaterial& m : material_library())
+      if (!same_constants(without(law.name, m.constants), m.constants))  // it has some of its own
+        built_in += (built_in.empty() ? "" : ", ") + m.name;
+    out += "\n" + law.name + " (" + chosen_by + "); built in for: " + (built_in.empty() ? "none" : built_in) + "\n ";
+    for (const MaterialKey& key : law.keys) out += " " + key.name;
+    out += "\n";
+  }
+  return out;
+}
+
 std::string key_reference_markdown() {
   std::string out = "| key | unit | default | meaning |\n|---|---|---|---|\n";
   for (const Key& k : keys()) {

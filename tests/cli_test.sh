@@ -14,6 +14,8 @@ expect 0 "usage: mpmshock SCENE" -- --help
 expect 0 "^mpmshock [0-9]+\.[0-9]+\.[0-9]+" -- --version
 expect 0 "\| \`velocity\` \| m/s \|" -- --keys
 expect 0 "material.copper.sound_speed = 3940 m/s" -- --materials
+expect 0 "tillotson \(equation_of_state = tillotson\); built in for: aluminium" -- --laws
+expect 0 "bilinear \(strength_model = bilinear, the default\)" -- --laws
 expect 2 "no scene file given" --
 expect 2 "unknown option '--frobnicate'" -- --frobnicate x.scene
 expect 2 "--threads needs a whole number" -- x.scene --threads zero

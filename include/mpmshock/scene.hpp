@@ -264,6 +264,9 @@ std::string key_reference_markdown();
 // The built-in materials (mpmshock --materials): each one's source and every constant as the
 // material.NAME.KEY line a scene would write.
 std::string material_library_text();
+// The material laws of the registry (mpmshock --laws): each one's slot, which built-in materials
+// carry its constants, and its keys.
+std::string material_laws_text();
 
 // Why the flyer is not the mirror image of the target about y = 0 (its height, its own voids), or
 // "" when it is: the condition for symmetry = on.
