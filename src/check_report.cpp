@@ -207,7 +207,7 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   const std::vector<std::string> names = s.materials_in_use();
   for (const MaterialLaw& law : material_laws()) {
     if (!law.effect.empty() && std::any_of(names.begin(), names.end(), [&](const std::string& name) {
-          return law.used(s, s.material_by_name(name));
+          return takes(law, s, s.material_by_name(name));
         }))
       on.push_back(law.effect);
   }

@@ -261,10 +261,30 @@ Key choice(std::string name, std::vector<std::pair<std::string, Enum>> options, 
 
 #define FIELD(member) [](auto& s) -> auto& { return s.member; }
 
+// The key that chooses a law of the slot: a material key (equation_of_state, strength_model), the
+// scene's effect (thermal_softening), or none (every material has the law).
+std::string choosing_key(LawSlot slot) {
+  switch (slot) {
+    case LawSlot::equation_of_state: return "equation_of_state";
+    case LawSlot::strength: return "strength_model";
+    case LawSlot::softening: return "thermal_softening";
+    case LawSlot::always: break;
+  }
+  return "";
+}
+
+// Whether the law comes first of its slot's in the registry: the slot's default, and where --keys
+// lists the slot's choosing key.
+bool first_of_its_slot(const MaterialLaw& law) {
+  for (const MaterialLaw& l : material_laws())
+    if (l.slot == law.slot) return &l == &law;
+  return false;
+}
+
 // The key that chooses a material's law of a slot (equation_of_state, strength_model): its words and
 // their meanings from the registry; the default is the slot's first law.
 template <class Enum>
-Key slot_key(LawSlot slot, std::string name, const std::string& intro, const std::string& tail, Enum Material::*field) {
+Key slot_key(LawSlot slot, const std::string& intro, const std::string& tail, Enum Material::*field) {
   std::vector<std::pair<std::string, Enum>> options;
   std::string meaning;
   for (const MaterialLaw& law : material_laws()) {
@@ -273,7 +293,7 @@ Key slot_key(LawSlot slot, std::string name, const std::string& intro, const std
     meaning += (meaning.empty() ? "" : "; ") + law.summary;
   }
   const std::string def = options.front().first;
-  return choice<Enum>(std::move(name), std::move(options), def, intro + meaning + tail,
+  return choice<Enum>(choosing_key(slot), std::move(options), def, intro + meaning + tail,
                       [field](auto& s) -> auto& { return s.material.*field; });
 }
 
@@ -281,13 +301,11 @@ Key slot_key(LawSlot slot, std::string name, const std::string& intro, const std
 // key that chooses a slot's law before the slot's first.
 void append_material_keys(std::vector<Key>& k) {
   const std::size_t first = k.size();
-  bool eos_listed = false, strength_listed = false;
   for (const MaterialLaw& law : material_laws()) {
-    if (law.slot == LawSlot::equation_of_state && !std::exchange(eos_listed, true))
-      k.push_back(slot_key(LawSlot::equation_of_state, "equation_of_state", "", "; each body takes its own material's",
-                           &Material::equation_of_state));
-    if (law.slot == LawSlot::strength && !std::exchange(strength_listed, true))
-      k.push_back(slot_key(LawSlot::strength, "strength_model", "the flow stress of plasticity: ",
+    if (law.slot == LawSlot::equation_of_state && first_of_its_slot(law))
+      k.push_back(slot_key(law.slot, "", "; each body takes its own material's", &Material::equation_of_state));
+    if (law.slot == LawSlot::strength && first_of_its_slot(law))
+      k.push_back(slot_key(law.slot, "the flow stress of plasticity: ",
                            "; each body takes its material's; a named material without its own "
                            "material.NAME.strength_model takes the bare key's",
                            &Material::strength_model));
@@ -808,18 +826,6 @@ bool is_multiple(double length, double unit) {
   return n >= 1 && std::abs(n * unit - length) <= 1e-9 * length;
 }
 
-// The key that chooses a law of the slot: a material key (equation_of_state, strength_model), the
-// scene's effect (thermal_softening), or none (every material has the law).
-std::string choosing_key(LawSlot slot) {
-  switch (slot) {
-    case LawSlot::equation_of_state: return "equation_of_state";
-    case LawSlot::strength: return "strength_model";
-    case LawSlot::softening: return "thermal_softening";
-    case LawSlot::always: break;
-  }
-  return "";
-}
-
 // Checks that involve more than one key. `at` finds where a key was set (or "defaults").
 void check_consistency(const Scene& s, const std::function<Origin(const std::string&)>& at, SceneErrors& errors) {
   auto fail = [&](const std::string& key, const std::string& msg) { errors.add(at(key), error_at(at(key), key, msg).what()); };
@@ -887,7 +893,7 @@ void check_consistency(const Scene& s, const std::function<Origin(const std::str
     for (const MaterialLaw& law : material_laws()) {
       std::vector<std::string> takers;  // the materials in use that take the law
       for (const std::string& name : s.materials_in_use())
-        if (law.used(s, s.material_by_name(name))) takers.push_back(name);
+        if (takes(law, s, s.material_by_name(name))) takers.push_back(name);
       if (takers.empty()) continue;
       const std::string chooser = choosing_key(law.slot);
       // (A named material's law the bare key set is named by the bare key.)
@@ -1211,9 +1217,7 @@ std::string material_laws_text() {
     std::string chosen_by = law.slot == LawSlot::always    ? "every material"
                             : law.slot == LawSlot::softening ? "thermal_softening = on, on bodies of the bilinear law"
                                                              : chooser + " = " + law.name;
-    const bool first_of_slot = &law == &*std::find_if(material_laws().begin(), material_laws().end(),
-                                                       [&](const MaterialLaw& l) { return l.slot == law.slot; });
-    if (law.slot != LawSlot::always && law.slot != LawSlot::softening && first_of_slot) chosen_by += ", the default";
+    if (law.slot != LawSlot::always && law.slot != LawSlot::softening && first_of_its_slot(law)) chosen_by += ", the default";
     std::string built_in;
     for (const LibraryMaterial& m : material_library())
       if (!same_constants(without(law.name, m.constants), m.constants))  // it has some of its own

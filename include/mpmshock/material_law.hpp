@@ -83,7 +83,8 @@ struct MaterialLaw {
   // default law, or a law another line of the list already names).
   std::string effect;
   std::vector<MaterialKey> keys;
-  // Whether a body of this material takes the law in this scene (the checks run only then).
+  // Beyond its slot's choice (takes(), below), whether the law acts on a body of this material in
+  // this scene (Steinberg-Guinan: with thermal_softening = on, on the bilinear law's bodies).
   std::function<bool(const Scene&, const Material&)> used = [](const Scene&, const Material&) { return true; };
   // Refuses constants of one material that do not fit the law.
   std::function<void(const MaterialCheck&)> check = [](const MaterialCheck&) {};
@@ -96,6 +97,9 @@ struct MaterialLaw {
 
 // The registry: every law a material can take, in the order their keys are listed (src/laws/registry.cpp).
 const std::vector<MaterialLaw>& material_laws();
+// Whether a body of material m takes the law in scene s: its slot's key names it (equation_of_state,
+// strength_model; the other slots always) and the law's own condition holds (the checks run only then).
+bool takes(const MaterialLaw& law, const Scene& s, const Material& m);
 // The law of that name; throws std::logic_error if none.
 const MaterialLaw& material_law(const std::string& name);
 // The material with every constant of the law zeroed: how the library marks a material without the

@@ -6,6 +6,8 @@
 
 #include <cassert>
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 #include <variant>
 
 #include "mpmshock/eos.hpp"
@@ -17,25 +19,26 @@ namespace mpmshock {
 // declares their keys); each type names its word as kModel.
 using EquationOfStateLaw = std::variant<MieGruneisen, Tillotson>;
 
-// A material's equation of state: the law of the list whose kModel its equation_of_state names.
-template <std::size_t I = 0>
-EquationOfStateLaw equation_of_state_of(const Material& mat) {
+// f(tag) with tag a null pointer to the law of the list whose kModel the material's
+// equation_of_state names: the one walk of the list by word.
+template <std::size_t I = 0, class F>
+decltype(auto) with_law_named_by(const Material& mat, F&& f) {
   using Law = std::variant_alternative_t<I, EquationOfStateLaw>;
   if constexpr (I + 1 < std::variant_size_v<EquationOfStateLaw>)
-    if (mat.equation_of_state != Law::kModel) return equation_of_state_of<I + 1>(mat);
+    if (mat.equation_of_state != Law::kModel) return with_law_named_by<I + 1>(mat, std::forward<F>(f));
   assert(mat.equation_of_state == Law::kModel);  // every word is some law's kModel
-  return Law(mat);
+  return f(static_cast<Law*>(nullptr));
+}
+
+// A material's equation of state.
+inline EquationOfStateLaw equation_of_state_of(const Material& mat) {
+  return with_law_named_by(mat, [&](auto tag) -> EquationOfStateLaw { return std::remove_pointer_t<decltype(tag)>(mat); });
 }
 
 // A material's reference bulk sound speed from its law's constants alone, without building the law
 // (the scene's checks call it before they have checked the constants).
-template <std::size_t I = 0>
-double reference_sound_speed_of(const Material& mat) {
-  using Law = std::variant_alternative_t<I, EquationOfStateLaw>;
-  if constexpr (I + 1 < std::variant_size_v<EquationOfStateLaw>)
-    if (mat.equation_of_state != Law::kModel) return reference_sound_speed_of<I + 1>(mat);
-  assert(mat.equation_of_state == Law::kModel);
-  return Law::sound_speed_of(mat);
+inline double reference_sound_speed_of(const Material& mat) {
+  return with_law_named_by(mat, [&](auto tag) { return std::remove_pointer_t<decltype(tag)>::sound_speed_of(mat); });
 }
 
 class MixedEquationOfState {

@@ -19,7 +19,6 @@ MaterialLaw bilinear_law() {
       {"hardening_beta", D::none, closed_bound(0.0, 1.0), "1", "share of isotropic hardening: 1 isotropic, 0 kinematic",
        &Material::hardening_beta},
   };
-  law.used = [](const Scene&, const Material& m) { return m.strength_model == StrengthModel::bilinear; };
   law.check = [](const MaterialCheck& c) {
     if (c.material.tangent_modulus >= c.material.youngs_modulus)
       c.fail(c.prefix + "tangent_modulus",

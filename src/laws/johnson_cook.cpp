@@ -36,7 +36,6 @@ MaterialLaw johnson_cook_law() {
        "Johnson-Cook T_r, the temperature of its tests, where T* = 0", &Material::jc_room_temperature,
        /*reference=*/true},
   };
-  law.used = [](const Scene&, const Material& m) { return m.strength_model == StrengthModel::johnson_cook; };
   // Each such material needs its constants, in a state where it has strength.
   law.check = [](const MaterialCheck& c) {
     const Material& m = c.material;

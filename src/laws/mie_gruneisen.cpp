@@ -32,7 +32,6 @@ MaterialLaw mie_gruneisen_law() {
        "points compressed past its Hugoniot state are counted as outside the equation of state's range",
        &Material::fit_particle_velocity},
   };
-  law.used = [](const Scene&, const Material& m) { return m.equation_of_state == EquationOfStateModel::mie_gruneisen; };
   return law;
 }
 

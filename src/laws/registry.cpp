@@ -28,6 +28,20 @@ const std::vector<MaterialLaw>& material_laws() {
   return laws;
 }
 
+bool takes(const MaterialLaw& law, const Scene& s, const Material& m) {
+  switch (law.slot) {
+    case LawSlot::equation_of_state:
+      if (static_cast<int>(m.equation_of_state) != law.choice) return false;
+      break;
+    case LawSlot::strength:
+      if (static_cast<int>(m.strength_model) != law.choice) return false;
+      break;
+    case LawSlot::always:
+    case LawSlot::softening: break;
+  }
+  return law.used(s, m);
+}
+
 const MaterialLaw& material_law(const std::string& name) {
   for (const MaterialLaw& law : material_laws())
     if (law.name == name) return law;

@@ -36,7 +36,6 @@ MaterialLaw tillotson_law() {
       {"tillotson_beta", D::none, closed_bound(0.0, 100.0), "5",
        "Tillotson beta, the decay of the vapour branch's A term with expansion", &Material::tillotson_beta},
   };
-  law.used = [](const Scene&, const Material& m) { return m.equation_of_state == EquationOfStateModel::tillotson; };
   law.check = [](const MaterialCheck& c) {
     const Material& m = c.material;
     if (!m.has_tillotson())
