@@ -155,8 +155,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
   if (s.effects.plasticity) {
     // Each body's law is its material's; where they differ, each material's is named.
     auto law_of = [&](const Material& m) -> std::string {
-      if (m.strength_model == StrengthModel::johnson_cook)
-        return "Johnson-Cook flow stress: strain, rate and temperature; molten at jc_melt_temperature";
+      const MaterialLaw& law = mpmshock::law_of(LawSlot::strength, m);
+      if (!law.plasticity.empty()) return law.plasticity;
       return s.effects.thermal_softening ? "with Steinberg-Guinan softening" : "";
     };
     const std::vector<std::string> names = s.materials_in_use();
@@ -171,8 +171,9 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
       for (const std::string& name : names) {
         const Material& m = s.material_by_name(name);
         const std::string law = law_of(m);
+        const bool own_flow_stress = !mpmshock::law_of(LawSlot::strength, m).plasticity.empty();
         each += (each.empty() ? "" : "; ") + name + ": " +
-                (m.strength_model == StrengthModel::johnson_cook ? law : "bilinear" + (law.empty() ? "" : ", " + law));
+                (own_flow_stress ? law : m.strength_model + (law.empty() ? "" : ", " + law));
       }
       on.push_back("plasticity (" + each + ")");
     }
@@ -191,8 +192,8 @@ std::string describe_setup(const Scene& s, const InitialState<D>& st) {
     for (const std::string& name : names) {
       const Material& m = s.material_by_name(name);
       melt << (name == names.front() ? "" : "; ") << (name == "scene" ? "" : name + ": ");
-      if (m.strength_model == StrengthModel::johnson_cook)  // its own law's melt, without latent heat
-        melt << "Johnson-Cook's T_m " << m.jc_melt_temperature << " K";
+      if (const MaterialLaw& law = law_of(LawSlot::strength, m); law.melt)  // its own law's melt
+        melt << law.melt(m);
       else
         melt << "T_m0 " << m.melt_temperature << " K, Lindemann a " << m.lindemann_a << ", latent heat " << m.latent_heat
              << " J/kg";

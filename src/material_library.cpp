@@ -12,6 +12,7 @@
 // = 0) until a scene sets material.NAME.tillotson_*. Steinberg-Guinan softening and melting
 // (thermal_softening = on): aluminium (6061-T6), copper and LiF after Steinberg (1996); tantalum and
 // PMMA have none (melt_temperature = 0).
+#include "mpmshock/johnson_cook.hpp"
 #include "mpmshock/material.hpp"
 #include "mpmshock/material_law.hpp"
 
@@ -39,12 +40,13 @@ Material make(double rho0, double c0, double s, double gamma0, double cv, double
 
 // Johnson-Cook constants: A, B [Pa], n, C, m, T_m [K] (T_r stays 298 K).
 Material with_johnson_cook(Material m, double A, double B, double n, double C, double mt, double T_m) {
-  m.jc_yield_stress = A;
-  m.jc_hardening = B;
-  m.jc_hardening_exponent = n;
-  m.jc_rate_coefficient = C;
-  m.jc_thermal_exponent = mt;
-  m.jc_melt_temperature = T_m;
+  JohnsonCookConstants& jc = m.law_constants<JohnsonCookConstants>();
+  jc.yield_stress = A;
+  jc.hardening = B;
+  jc.hardening_exponent = n;
+  jc.rate_coefficient = C;
+  jc.thermal_exponent = mt;
+  jc.melt_temperature = T_m;
   return m;
 }
 

@@ -63,7 +63,13 @@ std::array<EquationOfState, kBodies> equations_of_state(const std::array<const M
 // isotropic hardening (when another body needs it, so that the bodies' laws are one type).
 StrengthLaw strength_of(const Scene& s, const Material& mat, bool back_stress) {
   if (!s.effects.plasticity) return NoStrength{};
-  if (mat.strength_model == StrengthModel::johnson_cook) return JohnsonCook(mat);  // isotropic, its own softening (src/laws/johnson_cook.cpp)
+  // A law of its own type (laws.hpp: Johnson-Cook, isotropic, its own softening), else bilinear.
+  std::optional<StrengthLaw> own;
+  for_each_law<OwnStrengthLaw>([&](auto tag) {
+    using Law = std::remove_pointer_t<decltype(tag)>;
+    if (mat.strength_model == Law::kName) own = Law(mat);
+  });
+  if (own) return *own;
   const bool isotropic = mat.hardening_beta == 1.0 && !back_stress;
   if (s.effects.thermal_softening) {
     if (isotropic) return VonMises<false, true>(mat, softening_of(mat));
@@ -127,7 +133,7 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m)
   // Steinberg-Guinan's melting is the bilinear law's: a Johnson-Cook body melts at its own T_m.
   if (thermal && s.effects.thermal_softening)
     for (const Body b : {Body::flyer, Body::target, Body::window})
-      if (m[index_of(b)]->strength_model == StrengthModel::bilinear)
+      if (m[index_of(b)]->strength_model == "bilinear")
         thermal->set_melting(b, melt_curve_of(*m[index_of(b)]), m[index_of(b)]->latent_heat);
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;

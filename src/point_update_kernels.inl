@@ -1,5 +1,6 @@
 // The definition of update_points_kernel (point_update_kernels.hpp), included only by the
-// translation units that instantiate it, one per equation of state.
+// translation units that instantiate it: each equation of state's file (src/laws/<law>.cpp) and
+// src/point_update_mixed.cpp.
 #include <type_traits>
 #include <variant>
 

@@ -289,7 +289,7 @@ Key slot_key(LawSlot slot, const std::string& intro, const std::string& tail, En
   std::string meaning;
   for (const MaterialLaw& law : material_laws()) {
     if (law.slot != slot) continue;
-    options.emplace_back(law.name, static_cast<Enum>(law.choice));
+    options.emplace_back(law.name, law.name);
     meaning += (meaning.empty() ? "" : "; ") + law.summary;
   }
   const std::string def = options.front().first;
@@ -310,12 +310,12 @@ void append_material_keys(std::vector<Key>& k) {
                            "material.NAME.strength_model takes the bare key's",
                            &Material::strength_model));
     for (const MaterialKey& mk : law.keys) {
-      if (const auto* field = std::get_if<double Material::*>(&mk.field)) {
+      if (const auto* field = std::get_if<NumberField>(&mk.field)) {
         k.push_back(quantity(mk.name, mk.dim, mk.range, mk.default_text, mk.meaning,
-                             [f = *field](auto& s) -> auto& { return s.material.*f; }));
+                             [f = *field](auto& s) -> auto& { return f(s.material); }));
       } else {
         k.push_back(flag(mk.name, mk.default_text, mk.meaning,
-                         [f = std::get<bool Material::*>(mk.field)](auto& s) -> auto& { return s.material.*f; }));
+                         [f = std::get<FlagField>(mk.field)](auto& s) -> auto& { return f(s.material); }));
       }
     }
   }

@@ -1,7 +1,9 @@
 // The registry of material laws (src/laws/): every constant of Material is declared by exactly one
 // law, each key reads and writes its own field through the scene, a law's "without" mark is what its
 // check refuses, and each law's checks and scene checks reach the user under the key that chose it.
+#include <algorithm>
 #include <cstddef>
+#include <type_traits>
 #include <set>
 #include <utility>
 #include <variant>
@@ -9,7 +11,7 @@
 
 #include "check.hpp"
 #include "mpmshock/material_law.hpp"
-#include "mpmshock/mixed_equation_of_state.hpp"
+#include "mpmshock/laws.hpp"
 #include "mpmshock/scene.hpp"
 
 using namespace mpmshock;
@@ -50,54 +52,80 @@ constexpr std::size_t field_count() {
     return N - 1;
 }
 
+// Whether a law type keeps its constants in a struct of its own (Law::Constants).
+template <class Law, class = void>
+struct HasConstants : std::false_type {};
+template <class Law>
+struct HasConstants<Law, std::void_t<typename Law::Constants>> : std::true_type {};
+
+// Whether `at` lies inside the object x.
+template <class T>
+bool inside(const char* at, const T& x) {
+  const char* begin = reinterpret_cast<const char*>(&x);
+  return at >= begin && at < begin + sizeof(T);
+}
+
 int main() {
   // Every field is one law's key: a field no law declares would be missed by same_constants, the
   // scene's keys, scene.txt and restart. Material is its two law choices (equation_of_state,
-  // strength_model) and the keys' fields, each key a field of its own.
+  // strength_model), the structs of the laws' own constants and the other keys' fields; each law's
+  // struct is its keys' fields; each key a field of its own.
   std::set<std::string> names;
-  std::set<std::ptrdiff_t> offsets;
-  std::size_t keys = 0;
-  const Material probe;
+  std::set<const char*> fields;
+  Material probe;  // each law's struct is stored in it as its keys reach it
   for (const MaterialLaw& law : material_laws())
     for (const MaterialKey& key : law.keys) {
       CHECK(names.insert(key.name).second);  // no key declared twice
-      ++keys;
-      const char* at = std::visit([&](auto field) { return reinterpret_cast<const char*>(&(probe.*field)); }, key.field);
-      CHECK(offsets.insert(at - reinterpret_cast<const char*>(&probe)).second);  // nor one field by two keys
+      const char* at = std::visit([&](const auto& f) { return reinterpret_cast<const char*>(&f(probe)); }, key.field);
+      CHECK(fields.insert(at).second);  // nor one field by two keys
     }
-  static_assert(field_count<Material>() > 2);
-  CHECK(field_count<Material>() == 2 + keys);
-
-  // Each slot's laws have words of their own, and every equation of state of the kernels' list is a
-  // law of the registry by its word.
-  for (const LawSlot slot : {LawSlot::equation_of_state, LawSlot::strength}) {
-    std::set<int> choices;
-    for (const MaterialLaw& law : material_laws())
-      if (law.slot == slot) CHECK(choices.insert(law.choice).second);
-  }
-  auto registered = [](EquationOfStateModel model) {
-    for (const MaterialLaw& law : material_laws())
-      if (law.slot == LawSlot::equation_of_state && law.choice == static_cast<int>(model)) return true;
-    return false;
+  auto count_inside = [&](const auto& x) {
+    return static_cast<std::size_t>(std::count_if(fields.begin(), fields.end(), [&](const char* at) { return inside(at, x); }));
   };
-  CHECK(registered(MieGruneisen::kModel) && registered(Tillotson::kModel));
-  CHECK(std::variant_size_v<EquationOfStateLaw> == 2);  // a new law: add it to the line above
+  std::size_t in_laws = 0, law_types = 0;
+  auto count_law = [&](auto tag) {
+    using Law = std::remove_pointer_t<decltype(tag)>;
+    // Every law of the kernels' lists is a law of the registry by its word.
+    bool registered = false;
+    for (const MaterialLaw& law : material_laws()) registered = registered || law.name == Law::kName;
+    CHECK(registered);
+    ++law_types;
+    if constexpr (HasConstants<Law>::value) {
+      const std::size_t n = count_inside(probe.law_constants<typename Law::Constants>());
+      CHECK(n > 0 && n == field_count<typename Law::Constants>());
+      in_laws += n;
+    }
+  };
+  for_each_law<EquationOfStateLaw>(count_law);
+  for_each_law<OwnStrengthLaw>(count_law);
+  CHECK(law_types >= 3);
+  const std::size_t own = count_inside(probe);
+  CHECK(own + in_laws == fields.size());  // each key is Material's or a law's struct's
+  static_assert(field_count<Material>() > 3);
+  CHECK(field_count<Material>() == 3 + own);
+
+  // Each slot's laws have words of their own.
+  for (const LawSlot slot : {LawSlot::equation_of_state, LawSlot::strength}) {
+    std::set<std::string> words;
+    for (const MaterialLaw& law : material_laws())
+      if (law.slot == slot) CHECK(words.insert(law.name).second);
+  }
 
   // Each key sets its own field and no other (as the bare key and as material.NAME.KEY), and
   // same_constants sees each.
   for (const MaterialLaw& law : material_laws())
     for (const MaterialKey& key : law.keys) {
-      const auto* field = std::get_if<double Material::*>(&key.field);
+      const auto* field = std::get_if<NumberField>(&key.field);
       if (!field) {  // a flag: on, bare and named
-        const auto flag = std::get<bool Material::*>(key.field);
-        CHECK(!(Material{}.*flag));
-        CHECK(parse(key.name + " = on\n").material.*flag);
-        CHECK(parse("material.mine." + key.name + " = on\n").materials.at("mine").*flag);
+        const FlagField flag = std::get<FlagField>(key.field);
+        CHECK(!flag(Material{}));
+        CHECK(flag(parse(key.name + " = on\n").material));
+        CHECK(flag(parse("material.mine." + key.name + " = on\n").materials.at("mine")));
         continue;
       }
       Material base;
       // A value other than the default, inside the key's range.
-      const double v0 = base.*(*field);
+      const double v0 = (*field)(base);
       double changed = v0;
       for (const double c : {v0 * 0.9, v0 * 1.1, 1.0})
         if (c != v0 && (key.range.lo_open ? c > key.range.lo : c >= key.range.lo) &&
@@ -109,18 +137,19 @@ int main() {
       const std::string value = format_number(changed);
       const Scene bare = parse(key.name + " = " + value + "\n");
       Material expected = base;
-      expected.*(*field) = changed;
+      (*field)(expected) = changed;
       CHECK(same_constants(bare.material, expected));
       CHECK(!same_constants(bare.material, base));
       const Scene named = parse("material.mine." + key.name + " = " + value + "\n");
-      CHECK(named.materials.at("mine").*(*field) == changed);
+      CHECK((*field)(named.materials.at("mine")) == changed);
     }
 
   // without(law) zeroes the law's constants (the library's mark of a material without them) and
   // keeps the reference values (Johnson-Cook's room temperature).
   const Material none = without("johnson_cook", without("tillotson", without("steinberg_guinan", Material{})));
-  CHECK(!none.has_johnson_cook() && !none.has_tillotson() && !none.has_softening());
-  CHECK(none.jc_room_temperature == 298.0);
+  CHECK(!none.law_constants<JohnsonCookConstants>().present() && !none.law_constants<TillotsonConstants>().present() &&
+        !none.has_softening());
+  CHECK(none.law_constants<JohnsonCookConstants>().room_temperature == 298.0);
   CHECK(none.density == Material{}.density && none.yield_stress == Material{}.yield_stress);
 
   // The slot keys list their laws from the registry: an unknown word names every law of the slot.

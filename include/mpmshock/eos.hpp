@@ -27,16 +27,20 @@
 #pragma once
 
 #include <cmath>
+#include <string_view>
 
 #include "mpmshock/material.hpp"
 
 namespace mpmshock {
 
+struct MaterialLaw;
+
 class MieGruneisen {
  public:
   // The word equation_of_state takes for it, and whether its temperature's reference curve is its
   // Hugoniot in closed form (temperature.hpp; false: the isentrope, tabulated).
-  static constexpr EquationOfStateModel kModel = EquationOfStateModel::mie_gruneisen;
+  static MaterialLaw law();  // its keys and checks (src/laws/mie_gruneisen.cpp)
+  static constexpr std::string_view kName = "mie_gruneisen";
   static constexpr bool kHugoniotReference = true;
   // The reference bulk sound speed from the constants alone (scene checks, before they are checked).
   static double sound_speed_of(const Material& mat) { return mat.sound_speed; }

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 #include "mpmshock/material.hpp"
 #include "mpmshock/temperature.hpp"
@@ -25,7 +26,28 @@
 
 namespace mpmshock {
 
+struct MaterialLaw;
+
+// A material's Johnson-Cook constants (its jc_* keys, src/laws/johnson_cook.cpp). The defaults are
+// 6061-T6's as commonly tabulated after Johnson and Holmquist (1989); A = 0 marks a material without
+// them (material_library.cpp).
+struct JohnsonCookConstants {
+  double yield_stress = 324e6;     // A [Pa]
+  double hardening = 114e6;        // B [Pa]
+  double hardening_exponent = 0.42;  // n
+  double rate_coefficient = 0.002;   // C, per e-fold of the equivalent strain rate above 1 /s
+  double thermal_exponent = 1.34;    // m
+  double melt_temperature = 925.0;   // T_m [K]
+  double room_temperature = 298.0;   // T_r [K], where T* = 0
+  bool present() const { return yield_stress > 0.0; }
+};
+
 struct JohnsonCook {
+  using Constants = JohnsonCookConstants;
+  // Its keys, checks and --check lines (src/laws/johnson_cook.cpp), and the word strength_model
+  // takes for it.
+  static MaterialLaw law();
+  static constexpr std::string_view kName = "johnson_cook";
   static constexpr bool has_stress = true;
   static constexpr bool has_back_stress = false;
 
@@ -34,10 +56,10 @@ struct JohnsonCook {
   double T_m, T_r;       // melt and room temperature [K]
   HugoniotTemperature thermal;
 
-  explicit JohnsonCook(const Material& mat)
-      : shear_modulus(mat.shear_modulus()), A(mat.jc_yield_stress), B(mat.jc_hardening), n(mat.jc_hardening_exponent),
-        C(mat.jc_rate_coefficient), m(mat.jc_thermal_exponent), T_m(mat.jc_melt_temperature),
-        T_r(mat.jc_room_temperature), thermal(mat) {}
+  explicit JohnsonCook(const Material& mat) : JohnsonCook(mat, mat.law_constants<Constants>()) {}
+  JohnsonCook(const Material& mat, const Constants& c)
+      : shear_modulus(mat.shear_modulus()), A(c.yield_stress), B(c.hardening), n(c.hardening_exponent),
+        C(c.rate_coefficient), m(c.thermal_exponent), T_m(c.melt_temperature), T_r(c.room_temperature), thermal(mat) {}
 
   // The rate and temperature factors, (1 + C ln rate*) and (1 - T*^m); the second 0 in the melt.
   double rate_factor(double rate) const { return 1.0 + C * std::log(std::max(rate, 1.0)); }

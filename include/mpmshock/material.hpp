@@ -2,9 +2,13 @@
 // (E = 69 GPa, not MPa).
 #pragma once
 
+#include <any>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
+#include <typeindex>
+#include <typeinfo>
 #include <vector>
 
 namespace mpmshock {
@@ -15,19 +19,36 @@ enum class Body : std::uint8_t { flyer = 0, target = 1, window = 2 };
 constexpr std::size_t kBodies = 3;
 constexpr std::size_t index_of(Body b) { return static_cast<std::size_t>(b); }
 
-// The equation of state of a material: Mie-Grüneisen on its Us-up Hugoniot (eos.hpp) or
-// Tillotson's, with expanded and vapour states (tillotson.hpp).
-enum class EquationOfStateModel { mie_gruneisen, tillotson };
+// The constants of the laws that keep them in a struct of their own (Tillotson's, Johnson-Cook's:
+// each law's header defines it with its defaults), held by type: a material carries the structs a
+// scene or the library set, and reads the defaults of the others. A new law so adds no field here.
+class LawConstants {
+ public:
+  template <class C>
+  const C& get() const {
+    const auto it = by_type_.find(std::type_index(typeid(C)));
+    if (it != by_type_.end()) return *std::any_cast<C>(&it->second);
+    static const C defaults{};
+    return defaults;
+  }
+  template <class C>
+  C& get() {
+    auto it = by_type_.find(std::type_index(typeid(C)));
+    if (it == by_type_.end()) it = by_type_.emplace(std::type_index(typeid(C)), C{}).first;
+    return *std::any_cast<C>(&it->second);
+  }
 
-// The flow stress of a material's von Mises strength (plasticity = on): bilinear, sigma_Y0 + H eps_p
-// (von_mises.hpp, with Steinberg-Guinan softening where thermal_softening = on), or Johnson-Cook's
-// strain, rate and temperature law with its jc_* constants (johnson_cook.hpp).
-enum class StrengthModel { bilinear, johnson_cook };
+ private:
+  std::map<std::type_index, std::any> by_type_;  // a node per law: references stay valid
+};
 
 struct Material {
-  EquationOfStateModel equation_of_state = EquationOfStateModel::mie_gruneisen;
-  // A library material without its own material.NAME.strength_model takes the bare key's (scene.cpp).
-  StrengthModel strength_model = StrengthModel::bilinear;
+  // Its equation of state and strength law by the words of their laws (src/laws/): Mie-Grüneisen
+  // (eos.hpp) or Tillotson (tillotson.hpp); bilinear von Mises (von_mises.hpp) or Johnson-Cook
+  // (johnson_cook.hpp). A library material without its own material.NAME.strength_model takes the
+  // bare key's (scene.cpp).
+  std::string equation_of_state = "mie_gruneisen";
+  std::string strength_model = "bilinear";
   double density = 2700.0;               // rho0, solid reference density [kg/m3]
   double youngs_modulus = 69e9;          // E [Pa]; with nu gives only the shear modulus
   double poisson_ratio = 0.33;           // nu
@@ -60,32 +81,12 @@ struct Material {
   double latent_heat = 397e3;                  // [J/kg] heat of fusion, taken at T_m
   bool has_softening() const { return melt_temperature > 0.0; }
 
-  // Tillotson's constants (equation_of_state = tillotson, tillotson.hpp). The defaults are
-  // aluminium's (Tillotson 1962, as tabulated in Spheral's material library); A = 0 marks a material
-  // without them (material_library.cpp).
-  double tillotson_a = 0.5;
-  double tillotson_b = 1.63;
-  double tillotson_bulk_modulus = 75.2e9;          // A [Pa]
-  double tillotson_nonlinear_modulus = 65.0e9;     // B [Pa]
-  double tillotson_energy = 5.0e6;                 // E0 [J/kg]
-  double tillotson_incipient_vaporisation = 2.7e6; // E_iv [J/kg]
-  double tillotson_complete_vaporisation = 14.1e6; // E_cv [J/kg]
-  double tillotson_alpha = 5.0;
-  double tillotson_beta = 5.0;
-  bool has_tillotson() const { return tillotson_bulk_modulus > 0.0; }
-
-  // Johnson-Cook flow stress (strength_model = johnson_cook, johnson_cook.hpp):
-  //   sigma_Y = (A + B eps_p^n) (1 + C ln(rate / 1 /s)) (1 - T*^m),  T* = (T - T_r) / (T_m - T_r).
-  // The defaults are 6061-T6's as commonly tabulated after Johnson and Holmquist (1989); A = 0 marks a
-  // material without Johnson-Cook constants (material_library.cpp).
-  double jc_yield_stress = 324e6;     // A [Pa]
-  double jc_hardening = 114e6;        // B [Pa]
-  double jc_hardening_exponent = 0.42;  // n
-  double jc_rate_coefficient = 0.002;   // C, per e-fold of the equivalent strain rate above 1 /s
-  double jc_thermal_exponent = 1.34;    // m
-  double jc_melt_temperature = 925.0;   // T_m [K]
-  double jc_room_temperature = 298.0;   // T_r [K], where T* = 0
-  bool has_johnson_cook() const { return jc_yield_stress > 0.0; }
+  // The constants of the laws with a struct of their own, by type (law_constants<TillotsonConstants>()).
+  LawConstants laws;
+  template <class C>
+  const C& law_constants() const { return laws.get<C>(); }
+  template <class C>
+  C& law_constants() { return laws.get<C>(); }
 
   // G = E / (2 (1 + nu)): the only elastic constant the deviatoric update uses (physics-notes 1).
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }

@@ -1,15 +1,16 @@
 // The laws a material is built from, each declared once: its name, the material keys its constants
 // are set by (unit, range, default, meaning) and its checks of them. The registry
-// (src/laws/registry.cpp) lists them, one line per law; the scene's key table, --keys, docs/keys.md,
-// scene.txt, same_constants and the library's "without" marks all iterate it, so a new law's
-// constants' keys and checks are declared in its own file under src/laws/ (its constants' fields are
-// Material's, material.hpp).
+// (src/laws/registry.cpp, with the laws of a kernel type of their own from laws.hpp) lists them, one
+// line per law; the scene's key table, --keys, docs/keys.md, scene.txt, same_constants and the
+// library's "without" marks all iterate it, so a new law's constants' keys and checks are declared in
+// its own file under src/laws/ (its constants are its own struct, which the material holds by type).
 #pragma once
 
 #include <functional>
 #include <limits>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -42,6 +43,37 @@ inline Bounds non_negative_bound() { return {0.0, std::numeric_limits<double>::i
 inline Bounds closed_bound(double lo, double hi) { return {lo, hi, false, false}; }
 inline Bounds open_bound(double lo, double hi) { return {lo, hi, true, true}; }
 
+// Where a key's value lives in a material: one of Material's own fields (&Material::density) or one of
+// a law's constants (&TillotsonConstants::a, in the struct the material holds for the law).
+template <class Member>
+struct MemberOf;
+template <class Owner, class Value>
+struct MemberOf<Value Owner::*> {
+  using owner = Owner;
+  using value = Value;
+};
+template <auto Member, class M>  // M: Material or const Material
+auto& field_at(M& m) {
+  using Owner = typename MemberOf<decltype(Member)>::owner;
+  if constexpr (std::is_same_v<Owner, Material>)
+    return m.*Member;
+  else
+    return m.template law_constants<Owner>().*Member;
+}
+template <class Value>
+struct FieldOf {
+  Value& (*ref)(Material&);
+  const Value& (*read)(const Material&);
+  Value& operator()(Material& m) const { return ref(m); }
+  const Value& operator()(const Material& m) const { return read(m); }
+};
+using NumberField = FieldOf<double>;
+using FlagField = FieldOf<bool>;
+// The field of a key: field<&Material::density>, field<&TillotsonConstants::a>.
+template <auto Member>
+inline constexpr FieldOf<typename MemberOf<decltype(Member)>::value> field{&field_at<Member, Material>,
+                                                                          &field_at<Member, const Material>};
+
 // A constant of a material as a scene sets it: bare for the scene's own material, material.NAME.KEY
 // for a named one. A quantity (with dim and range) or an on/off flag.
 struct MaterialKey {
@@ -50,7 +82,7 @@ struct MaterialKey {
   Bounds range;
   std::string default_text;
   std::string meaning;
-  std::variant<double Material::*, bool Material::*> field;
+  std::variant<NumberField, FlagField> field;
   // A reference value rather than a constant of the law (Johnson-Cook's room temperature): without()
   // keeps it, so a material given the law's constants later need not give it too.
   bool reference = false;
@@ -76,12 +108,15 @@ enum class LawSlot { always, equation_of_state, strength, softening };
 
 struct MaterialLaw {
   LawSlot slot = LawSlot::always;
-  std::string name;     // as its slot's key writes it (equation_of_state = tillotson)
-  int choice = 0;       // its value of the slot's enum (EquationOfStateModel, StrengthModel)
+  std::string name;     // as its slot's key writes it (equation_of_state = tillotson): the material's word
   std::string summary;  // what choosing it means, for the slot key's meaning
   // The line --check's list of effects gives it where a body takes it ("" for none: the slot's
   // default law, or a law another line of the list already names).
   std::string effect;
+  // A strength law with a flow stress of its own: how --check's plasticity line names it, and its
+  // melt for the melting line ("" for the bilinear law, which Steinberg-Guinan softens and melts).
+  std::string plasticity;
+  std::function<std::string(const Material&)> melt;
   std::vector<MaterialKey> keys;
   // Beyond its slot's choice (takes(), below), whether the law acts on a body of this material in
   // this scene (Steinberg-Guinan: with thermal_softening = on, on the bilinear law's bodies).
@@ -102,6 +137,8 @@ const std::vector<MaterialLaw>& material_laws();
 bool takes(const MaterialLaw& law, const Scene& s, const Material& m);
 // The law of that name; throws std::logic_error if none.
 const MaterialLaw& material_law(const std::string& name);
+// The law a material's key of the slot names (equation_of_state, strength_model).
+const MaterialLaw& law_of(LawSlot slot, const Material& m);
 // The material with every constant of the law zeroed: how the library marks a material without the
 // law's constants (tantalum has no Johnson-Cook ones), which the law's check then refuses.
 Material without(const std::string& law, Material m);

@@ -10,23 +10,18 @@
 #include <utility>
 #include <variant>
 
-#include "mpmshock/eos.hpp"
-#include "mpmshock/tillotson.hpp"
+#include "mpmshock/laws.hpp"
 
 namespace mpmshock {
 
-// The list of the equations of state a material may take (the registry's, src/laws/registry.cpp,
-// declares their keys); each type names its word as kModel.
-using EquationOfStateLaw = std::variant<MieGruneisen, Tillotson>;
-
-// f(tag) with tag a null pointer to the law of the list whose kModel the material's
-// equation_of_state names: the one walk of the list by word.
+// f(tag) with tag a null pointer to the law of the registry's list (EquationOfStateLaw, laws.hpp)
+// whose kName the material's equation_of_state names: the one walk of the list by word.
 template <std::size_t I = 0, class F>
 decltype(auto) with_law_named_by(const Material& mat, F&& f) {
   using Law = std::variant_alternative_t<I, EquationOfStateLaw>;
   if constexpr (I + 1 < std::variant_size_v<EquationOfStateLaw>)
-    if (mat.equation_of_state != Law::kModel) return with_law_named_by<I + 1>(mat, std::forward<F>(f));
-  assert(mat.equation_of_state == Law::kModel);  // every word is some law's kModel
+    if (mat.equation_of_state != Law::kName) return with_law_named_by<I + 1>(mat, std::forward<F>(f));
+  assert(mat.equation_of_state == Law::kName);  // every word is some law's kName
   return f(static_cast<Law*>(nullptr));
 }
 

@@ -7,13 +7,15 @@
 
 #include <variant>
 
-#include "mpmshock/johnson_cook.hpp"
+#include "mpmshock/laws.hpp"
 #include "mpmshock/von_mises.hpp"
 
 namespace mpmshock {
 
-// One material's strength law when there is strength (model.cpp: strength_of).
-using StrengthWithStress = std::variant<VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>, JohnsonCook>;
+// One material's strength law when there is strength (model.cpp: strength_of): the bilinear law's
+// four forms and the registry's others (laws.hpp).
+using StrengthWithStress = JoinedVariant<
+    std::variant<VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>>, OwnStrengthLaw>;
 
 struct MixedStrength {
   static constexpr bool has_stress = true;

@@ -11,31 +11,24 @@
 
 #include "mpmshock/artificial_viscosity.hpp"
 #include "mpmshock/eos.hpp"
-#include "mpmshock/johnson_cook.hpp"
+#include "mpmshock/laws.hpp"
 #include "mpmshock/mixed_equation_of_state.hpp"
 #include "mpmshock/mixed_strength.hpp"
 #include "mpmshock/scene.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/spall.hpp"
 #include "mpmshock/temperature.hpp"
-#include "mpmshock/tillotson.hpp"
 #include "mpmshock/von_mises.hpp"
 
 namespace mpmshock {
 
 // A body's equation of state in the kernels: its law's own type where every body has that law, else
-// each body's law through MixedEquationOfState (the laws are listed once, in EquationOfStateLaw).
-template <class Variant, class T>
-struct VariantWith;
-template <class... Laws, class T>
-struct VariantWith<std::variant<Laws...>, T> {
-  using type = std::variant<Laws..., T>;
-};
-using EquationOfState = VariantWith<EquationOfStateLaw, MixedEquationOfState>::type;
-// A body's strength law in the kernels: its law's own type where every body has that law, else each
-// body's law through MixedStrength (mixed_strength.hpp).
-using StrengthLaw = std::variant<NoStrength, VonMises<false>, VonMises<true>, VonMises<false, true>, VonMises<true, true>,
-                                 JohnsonCook, MixedStrength>;
+// each body's law through MixedEquationOfState (the laws are listed once, in laws.hpp).
+using EquationOfState = JoinedVariant<EquationOfStateLaw, std::variant<MixedEquationOfState>>;
+// A body's strength law in the kernels: none, its law's own type where every body has that law, else
+// each body's law through MixedStrength (mixed_strength.hpp).
+using StrengthLaw =
+    JoinedVariant<std::variant<NoStrength>, JoinedVariant<StrengthWithStress, std::variant<MixedStrength>>>;
 using ViscosityLaw = std::variant<NoViscosity, ArtificialViscosity>;
 using FailureLaw = std::variant<NoFailure, Spall>;
 using ShapeChoice = std::variant<BilinearShape, GimpShape, QuadraticBSplineShape, QuadraticBSplineDomainShape>;

@@ -1,7 +1,7 @@
 // The point update's kernel for a run's laws. Its instantiations are compiled per equation of
-// state, each in a translation unit of its own (src/point_update_<law>.cpp): a new equation of
-// state adds one such file and one alternative of EquationOfState (model.hpp), and the kernels of
-// each compile apart, in parallel with the transfers (simulation.cpp).
+// state, each in its law's file (src/laws/<law>.cpp; bodies of mixed laws in
+// src/point_update_mixed.cpp), so the kernels of each compile apart, in parallel with the
+// transfers (simulation.cpp).
 #pragma once
 
 #include "mpmshock/constitutive.hpp"

@@ -9,7 +9,7 @@
 //     which tends to the ideal gas a rho E as the vapour expands;
 //   between (J > 1, E_iv < E < E_cv): P = ((E - E_iv) P_e + (E_cv - E) P_c) / (E_cv - E_iv).
 // The sound speed is the isentropic c^2 = (dP/drho)_E + (P / rho^2) (dP/dE)_rho, each branch's
-// derivatives in closed form (tests/test_tillotson.cpp checks them against differences).
+// derivatives in closed form (tests/laws/test_tillotson.cpp checks them against differences).
 //
 // Limits, stated rather than hidden: the cold expanded branch bounds the tension at A^2 / (4 B)
 // where B >= A / 2 (21.75 GPa for aluminium, at mu = -A / (2 B); with a smaller B the bound is A - B,
@@ -20,28 +20,52 @@
 
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 #include "mpmshock/material.hpp"
 #include "mpmshock/rankine_hugoniot.hpp"
 
 namespace mpmshock {
 
+struct MaterialLaw;
+
+// A material's Tillotson constants (its tillotson_* keys, src/laws/tillotson.cpp). The defaults are
+// aluminium's (Tillotson 1962, as tabulated in Spheral's material library); A = 0 marks a material
+// without them (material_library.cpp).
+struct TillotsonConstants {
+  double a = 0.5;
+  double b = 1.63;
+  double bulk_modulus = 75.2e9;              // A [Pa]
+  double nonlinear_modulus = 65.0e9;         // B [Pa]
+  double energy = 5.0e6;                     // E0 [J/kg]
+  double incipient_vaporisation = 2.7e6;     // E_iv [J/kg]
+  double complete_vaporisation = 14.1e6;     // E_cv [J/kg]
+  double alpha = 5.0;
+  double beta = 5.0;
+  bool present() const { return bulk_modulus > 0.0; }
+};
+
 class Tillotson {
  public:
-  // The word equation_of_state takes for it; its temperature is referenced to its isentrope
-  // (Tillotson has no Hugoniot in closed form; temperature.hpp tabulates it).
-  static constexpr EquationOfStateModel kModel = EquationOfStateModel::tillotson;
+  using Constants = TillotsonConstants;
+  // Its keys and checks (src/laws/tillotson.cpp), and the word equation_of_state takes for it; its
+  // temperature is referenced to its isentrope (Tillotson has no Hugoniot in closed form;
+  // temperature.hpp tabulates it).
+  static MaterialLaw law();
+  static constexpr std::string_view kName = "tillotson";
   static constexpr bool kHugoniotReference = false;
   // The reference bulk sound speed sqrt(A / rho0) from the constants alone (scene checks).
-  static double sound_speed_of(const Material& mat) { return std::sqrt(mat.tillotson_bulk_modulus / mat.density); }
+  static double sound_speed_of(const Material& mat) {
+    return std::sqrt(mat.law_constants<Constants>().bulk_modulus / mat.density);
+  }
 
   Tillotson() = default;
-  explicit Tillotson(const Material& mat)
-      : rho0_(mat.density), a_(mat.tillotson_a), b_(mat.tillotson_b), A_(mat.tillotson_bulk_modulus),
-        B_(mat.tillotson_nonlinear_modulus), E0_(mat.tillotson_energy), E_iv_(mat.tillotson_incipient_vaporisation),
-        E_cv_(mat.tillotson_complete_vaporisation), alpha_(mat.tillotson_alpha), beta_(mat.tillotson_beta) {
+  explicit Tillotson(const Material& mat) : Tillotson(mat.density, mat.law_constants<Constants>()) {
     J_fit_ = shock_from_rest(*this, mat.fit_particle_velocity).J;
   }
+  Tillotson(double rho0, const Constants& c)
+      : rho0_(rho0), a_(c.a), b_(c.b), A_(c.bulk_modulus), B_(c.nonlinear_modulus), E0_(c.energy),
+        E_iv_(c.incipient_vaporisation), E_cv_(c.complete_vaporisation), alpha_(c.alpha), beta_(c.beta) {}
 
   double rho0() const { return rho0_; }
   // The smallest J admitted: a fivefold compression (aluminium: 1.3 TPa on the cold branch).

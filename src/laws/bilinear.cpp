@@ -9,15 +9,14 @@ MaterialLaw bilinear_law() {
   MaterialLaw law;
   law.slot = LawSlot::strength;
   law.name = "bilinear";
-  law.choice = static_cast<int>(StrengthModel::bilinear);
   law.summary = "bilinear, yield_stress + the plastic modulus of tangent_modulus times eps_p (with "
                 "thermal_softening, Steinberg-Guinan's factor)";
   law.keys = {
-      {"yield_stress", D::pressure, positive_bound(), "120 MPa", "initial yield stress sigma_Y0", &Material::yield_stress},
+      {"yield_stress", D::pressure, positive_bound(), "120 MPa", "initial yield stress sigma_Y0", field<&Material::yield_stress>},
       {"tangent_modulus", D::pressure, non_negative_bound(), "384 MPa", "tangent modulus E_tan past yield",
-       &Material::tangent_modulus},
+       field<&Material::tangent_modulus>},
       {"hardening_beta", D::none, closed_bound(0.0, 1.0), "1", "share of isotropic hardening: 1 isotropic, 0 kinematic",
-       &Material::hardening_beta},
+       field<&Material::hardening_beta>},
   };
   law.check = [](const MaterialCheck& c) {
     if (c.material.tangent_modulus >= c.material.youngs_modulus)

@@ -1,40 +1,39 @@
 // The registry of material laws: one line per law, in the order their keys are listed (--keys) and
-// their checks run. A new law is its file in this folder (its keys and checks) and its line in
-// src/CMakeLists.txt, its line and declaration here, its constants' fields in material.hpp, its
-// physics in its header (eos.hpp, tillotson.hpp, ...) and its test (docs/adding-an-effect.md).
+// their checks run. The laws of a kernel type of their own (equations of state, strength laws other
+// than the bilinear one) come from their lists in laws.hpp, one line each there; the others are
+// listed here. A new law is its header (physics, word, constants), its file in this folder (keys,
+// checks; for an equation of state, its kernels), its line in laws.hpp and its test
+// (docs/adding-an-effect.md).
 #include <stdexcept>
 
+#include "mpmshock/laws.hpp"
 #include "mpmshock/material_law.hpp"
 
 namespace mpmshock {
 
-// Each law's declaration, in its own file here (src/laws/NAME.cpp).
+// The laws without a kernel type of their own, each in its file here (src/laws/NAME.cpp).
 MaterialLaw solid_law();
-MaterialLaw mie_gruneisen_law();
-MaterialLaw tillotson_law();
 MaterialLaw bilinear_law();
-MaterialLaw johnson_cook_law();
 MaterialLaw steinberg_guinan_law();
 
 const std::vector<MaterialLaw>& material_laws() {
-  static const std::vector<MaterialLaw> laws = {
-      solid_law(),
-      bilinear_law(),
-      steinberg_guinan_law(),
-      johnson_cook_law(),
-      mie_gruneisen_law(),
-      tillotson_law(),
-  };
+  static const std::vector<MaterialLaw> laws = [] {
+    std::vector<MaterialLaw> all = {solid_law(), bilinear_law(), steinberg_guinan_law()};
+    auto add = [&](auto tag) { all.push_back(std::remove_pointer_t<decltype(tag)>::law()); };
+    for_each_law<OwnStrengthLaw>(add);
+    for_each_law<EquationOfStateLaw>(add);
+    return all;
+  }();
   return laws;
 }
 
 bool takes(const MaterialLaw& law, const Scene& s, const Material& m) {
   switch (law.slot) {
     case LawSlot::equation_of_state:
-      if (static_cast<int>(m.equation_of_state) != law.choice) return false;
+      if (m.equation_of_state != law.name) return false;
       break;
     case LawSlot::strength:
-      if (static_cast<int>(m.strength_model) != law.choice) return false;
+      if (m.strength_model != law.name) return false;
       break;
     case LawSlot::always:
     case LawSlot::softening: break;
@@ -48,13 +47,19 @@ const MaterialLaw& material_law(const std::string& name) {
   throw std::logic_error("no material law named " + name);
 }
 
+const MaterialLaw& law_of(LawSlot slot, const Material& m) {
+  if (slot == LawSlot::equation_of_state) return material_law(m.equation_of_state);
+  if (slot == LawSlot::strength) return material_law(m.strength_model);
+  throw std::logic_error("law_of: a slot no material key chooses");
+}
+
 Material without(const std::string& name, Material m) {
   for (const MaterialKey& key : material_law(name).keys) {
     if (key.reference) continue;
-    if (const auto* field = std::get_if<double Material::*>(&key.field))
-      m.*(*field) = 0.0;
+    if (const auto* number = std::get_if<NumberField>(&key.field))
+      (*number)(m) = 0.0;
     else
-      m.*std::get<bool Material::*>(key.field) = false;
+      std::get<FlagField>(key.field)(m) = false;
   }
   return m;
 }
@@ -63,7 +68,7 @@ bool same_constants(const Material& a, const Material& b) {
   if (a.equation_of_state != b.equation_of_state || a.strength_model != b.strength_model) return false;
   for (const MaterialLaw& law : material_laws())
     for (const MaterialKey& key : law.keys) {
-      const bool same = std::visit([&](auto field) { return a.*field == b.*field; }, key.field);
+      const bool same = std::visit([&](const auto& field) { return field(a) == field(b); }, key.field);
       if (!same) return false;
     }
   return true;

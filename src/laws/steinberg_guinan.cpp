@@ -14,28 +14,28 @@ MaterialLaw steinberg_guinan_law() {
       {"softening_temperature", D::temperature, {0.0, 1e5, true, false}, "1923 K",
        "with thermal_softening: temperature at which linear softening would take G and sigma_Y to "
        "zero, 300 K + 1/B (Steinberg-Guinan 6061-T6: B = 6.16e-4 /K)",
-       &Material::softening_temperature},
+       field<&Material::softening_temperature>},
       {"melt_temperature", D::temperature, {0.0, 1e5, true, false}, "1220 K",
        "with thermal_softening: melt temperature at J = 1; T_m(J) = T_m0 exp(2a(1 - J)) "
        "J^(-2(gamma0 - a - 1/3)) (Lindemann); 0: the material has no Steinberg-Guinan constants",
-       &Material::melt_temperature},
+       field<&Material::melt_temperature>},
       {"lindemann_a", D::none, closed_bound(0.0, 10.0), "1.5",
-       "volume coefficient a of the Lindemann melt curve (Steinberg-Guinan 6061-T6)", &Material::lindemann_a},
+       "volume coefficient a of the Lindemann melt curve (Steinberg-Guinan 6061-T6)", field<&Material::lindemann_a>},
       {"pressure_hardening_scale", D::pressure, non_negative_bound(), "15.337 GPa",
        "with thermal_softening: Steinberg-Guinan's pressure term A P eta^(-1/3), A = 1 / this "
        "(6061-T6: A = 6.52 /Mbar); pressure stiffens G and sigma_Y",
-       &Material::pressure_hardening_scale},
+       field<&Material::pressure_hardening_scale>},
       {"yield_stress_max", D::pressure, non_negative_bound(), "680 MPa",
        "with thermal_softening: Steinberg-Guinan's cap Y_max on the work-hardened yield stress (6061-T6)",
-       &Material::yield_stress_max},
+       field<&Material::yield_stress_max>},
       {"latent_heat", D::specific_energy, non_negative_bound(), "397 kJ/kg",
        "with thermal_softening: heat of fusion taken at the melt temperature before the temperature "
        "rises further (aluminium, CRC Handbook)",
-       &Material::latent_heat},
+       field<&Material::latent_heat>},
   };
   // It softens the bodies of the bilinear law (Johnson-Cook has its own thermal term).
   law.used = [](const Scene& s, const Material& m) {
-    return s.effects.thermal_softening && m.strength_model == StrengthModel::bilinear;
+    return s.effects.thermal_softening && m.strength_model == "bilinear";
   };
   // A starting state the material cannot have (at or above its softening or melt temperature it has
   // no strength before anything happens) is refused.

@@ -74,7 +74,7 @@ Plateau run_impact(double v, bool plasticity, double end_time, double height, in
     if (!vapour) continue;
     int now = 0;
     for (std::size_t q = 0; q < sim.particles().size(); ++q)
-      if (sim.particles().J(q) > 1.0 && sim.particles().E[q] >= scene.material.tillotson_complete_vaporisation) ++now;
+      if (sim.particles().J(q) > 1.0 && sim.particles().E[q] >= scene.material.law_constants<TillotsonConstants>().complete_vaporisation) ++now;
     *vapour = std::max(*vapour, now);
   }
   const Particles<2>& p = sim.particles();
@@ -84,8 +84,8 @@ Plateau run_impact(double v, bool plasticity, double end_time, double height, in
   double count = 0;
   hot_expanded = 0;
   for (std::size_t q = 0; q < p.size(); ++q) {
-    if (p.J(q) > 1.0 && p.E[q] > scene.material.tillotson_incipient_vaporisation &&
-        p.E[q] < scene.material.tillotson_complete_vaporisation)
+    if (p.J(q) > 1.0 && p.E[q] > scene.material.law_constants<TillotsonConstants>().incipient_vaporisation &&
+        p.E[q] < scene.material.law_constants<TillotsonConstants>().complete_vaporisation)
       ++hot_expanded;
     if (p.body[q] != Body::target || p.x[q][1] < 0.5 * front || p.x[q][1] > 0.8 * front) continue;
     out.rho += p.density(q);
@@ -106,7 +106,7 @@ Plateau run_impact(double v, bool plasticity, double end_time, double height, in
 
 int run_tests() {
   Material til;
-  til.equation_of_state = EquationOfStateModel::tillotson;
+  til.equation_of_state = Tillotson::kName;
   const Tillotson eos(til);
   const HugoniotTemperature thermal(til);
   // The scheme's start-up heating (the instantaneous impact overdrives the first cells) lifts a
@@ -252,10 +252,10 @@ int main(int argc, char** argv) {
   // E_s J^a = -(1/rho0) [A (F1(J) - F1(1)) + B (F2(J) - F2(1))],
   // F1 = J^a / a - J^(a+1) / (a+1), F2 = J^(a-1) / (a-1) - 2 J^a / a + J^(a+1) / (a+1).
   Material plain = al;
-  plain.equation_of_state = EquationOfStateModel::tillotson;
-  plain.tillotson_b = 0;
-  plain.tillotson_incipient_vaporisation = 1e12;
-  plain.tillotson_complete_vaporisation = 2e12;
+  plain.equation_of_state = Tillotson::kName;
+  plain.law_constants<TillotsonConstants>().b = 0;
+  plain.law_constants<TillotsonConstants>().incipient_vaporisation = 1e12;
+  plain.law_constants<TillotsonConstants>().complete_vaporisation = 2e12;
   const HugoniotTemperature isentrope(plain);
   const double a = 0.5, A = 75.2e9, B = 65e9, rho0 = 2700, T0 = 300;
   auto F1 = [&](double J) { return std::pow(J, a) / a - std::pow(J, a + 1) / (a + 1); };
@@ -283,7 +283,7 @@ int main(int argc, char** argv) {
   // Aluminium's own isentrope (b = 1.63, the branches as they are): the reference state is T0, and
   // the Hugoniot state at 1000 m/s is hotter than the isentrope at its volume by its entropy.
   Material til = al;
-  til.equation_of_state = EquationOfStateModel::tillotson;
+  til.equation_of_state = Tillotson::kName;
   const HugoniotTemperature thermal(til);
   CHECK_NEAR(thermal.temperature(1.0, 0.0), 300.0, 1e-9);
   const ShockState h1000 = shock_from_rest(eos, 1000.0);

@@ -1,9 +1,0 @@
-// The point-update kernels of Mie-Grüneisen (eos.hpp), for every strength, viscosity and failure law.
-#include "point_update_kernels.inl"
-
-namespace mpmshock {
-
-template UpdatePointsKernel<2> update_points_kernel<2, MieGruneisen>(const Model&);
-template UpdatePointsKernel<3> update_points_kernel<3, MieGruneisen>(const Model&);
-
-}  // namespace mpmshock
