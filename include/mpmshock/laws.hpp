@@ -12,13 +12,14 @@
 
 #include "mpmshock/eos.hpp"
 #include "mpmshock/johnson_cook.hpp"
+#include "mpmshock/polynomial.hpp"
 #include "mpmshock/tillotson.hpp"
 
 namespace mpmshock {
 
 // The equations of state (equation_of_state = WORD); the first is the default. Each one's kernels are
 // instantiated in its file under src/laws/.
-using EquationOfStateLaw = std::variant<MieGruneisen, Tillotson>;
+using EquationOfStateLaw = std::variant<MieGruneisen, Tillotson, Polynomial>;
 
 // The strength laws of a type of their own (strength_model = WORD), besides the default bilinear law,
 // whose four forms (von_mises.hpp) follow from hardening_beta and thermal_softening (model.cpp).
