@@ -19,7 +19,11 @@
 // at cfl 0.6 with max_volume_change 0.02 (2026-12-05: a new "default" case; the old default's state
 // kept bitwise as the case "bspline2", the other two bitwise unchanged), and when a porous scene's
 // volumetric smoothing became automatic (2026-12-05: the new "default" case; the old default's state
-// kept bitwise as "no_smoothing", the other three bitwise unchanged).
+// kept bitwise as "no_smoothing", the other three bitwise unchanged), and when the passes of the
+// four-column stencils began to take a stencil row's nodes in vector lanes (2026-12-06, issue 32:
+// node_rows.hpp; the gathers' sums grouped by lanes moved the "default" and "no_smoothing" cases'
+// field sums by at most 2.1e-12 relative, the other three bitwise unchanged; written on a build
+// with AVX-512, where the file before was written without it).
 //
 // Bitwise where that is meaningful: floating-point results depend on the compiler and on the
 // instructions it may use (FMA contraction under -march=native), so the reference records the build

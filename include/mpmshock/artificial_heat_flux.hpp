@@ -32,6 +32,7 @@
 
 #include "mpmshock/grid.hpp"
 #include "mpmshock/halo.hpp"
+#include "mpmshock/node_rows.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
@@ -97,11 +98,38 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
       if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
       const double C = several ? pts.m[p] * capacity[b] : pts.m[p], Cr = C * r, CT = C * T[p];
       const bool rates = r > 0.0;
-      for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
-        if (rates) flux.node_rate[i] += N * Cr;
-        flux.node_temperature[i] += N * CT;
-        if constexpr (several) flux.node_capacity[i] += N * C;
-      });
+      if constexpr (D == 2 && Shape::support == 4) {  // each node given what the loop below gives it
+        const auto& st = stencils[p];
+        const bool consecutive = consecutive_columns(st);
+        Lanes w_columns;
+        load_lanes(w_columns, st.w[0]);
+        for (int b = 0; b < 4; ++b) {
+          const std::size_t row = geo.row_start(st.row0 + b);
+          const Lanes N = w_columns * st.w[1][b];
+          if (rates) {
+            Lanes rate;
+            load_scalar_row(rate, &flux.node_rate[row], st.column, consecutive);
+            rate += N * Cr;
+            store_scalar_row(&flux.node_rate[row], st.column, consecutive, rate);
+          }
+          Lanes temperature;
+          load_scalar_row(temperature, &flux.node_temperature[row], st.column, consecutive);
+          temperature += N * CT;
+          store_scalar_row(&flux.node_temperature[row], st.column, consecutive, temperature);
+          if constexpr (several) {
+            Lanes capacity;
+            load_scalar_row(capacity, &flux.node_capacity[row], st.column, consecutive);
+            capacity += N * C;
+            store_scalar_row(&flux.node_capacity[row], st.column, consecutive, capacity);
+          }
+        }
+      } else {
+        for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
+          if (rates) flux.node_rate[i] += N * Cr;
+          flux.node_temperature[i] += N * CT;
+          if constexpr (several) flux.node_capacity[i] += N * C;
+        });
+      }
     }, [&] {
       halo.between_colours(flux.node_rate, flux.node_temperature);
       if constexpr (several) halo.between_colours(flux.node_capacity);
@@ -126,9 +154,26 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
 #pragma omp parallel for schedule(dynamic, kChunk)
   for (std::size_t p = range.begin; p < range.end; ++p) {  // 2.
     double heat = 0.0;
-    for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
-      heat += N * flux.node_rate[i] * (flux.node_temperature[i] - T[p]);
-    });
+    if constexpr (D == 2 && Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
+      const auto& st = stencils[p];
+      const bool consecutive = consecutive_columns(st);
+      Lanes w_columns;
+      load_lanes(w_columns, st.w[0]);
+      Lanes lanes{};
+      for (int b = 0; b < 4; ++b) {
+        const std::size_t row = geo.row_start(st.row0 + b);
+        Lanes rate;
+        load_scalar_row(rate, &flux.node_rate[row], st.column, consecutive);
+        Lanes temperature;
+        load_scalar_row(temperature, &flux.node_temperature[row], st.column, consecutive);
+        lanes += (w_columns * st.w[1][b]) * rate * (temperature - T[p]);
+      }
+      heat = (lanes[0] + lanes[2]) + (lanes[1] + lanes[3]);
+    } else {
+      for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
+        heat += N * flux.node_rate[i] * (flux.node_temperature[i] - T[p]);
+      });
+    }
     pts.E[p] += flux.specific_heat[static_cast<std::size_t>(pts.body[p])] * heat;
   }
 }

@@ -11,6 +11,7 @@
 
 #include "mpmshock/grid.hpp"
 #include "mpmshock/halo.hpp"
+#include "mpmshock/node_rows.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/shape.hpp"
@@ -59,15 +60,47 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
     Vec<D> mv;
     for (int d = 0; d < D; ++d) mv[d] = m * pts.v[p][d];
     const Mat<D> sigma = cauchy_stress<D, Strength, Smoothed>(pts, p);
-    for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
-      g.m[i] += N * m;
-      for (int d = 0; d < D; ++d) g.mv[i][d] += N * mv[d];
-      for (int d = 0; d < D; ++d) {
-        double t = sigma(d, 0) * dN[0];
-        for (int j = 1; j < D; ++j) t += sigma(d, j) * dN[j];
-        g.f[i][d] -= V * t;
+    if constexpr (D == 2 && Shape::support == 4) {
+      // A row's four nodes at once (node_rows.hpp), each node given what the loop below gives it.
+      const bool consecutive = consecutive_columns(st);
+      const ColumnPairs wx(st.w[0]), gx(st.g[0]);
+      Lanes w_columns;
+      load_lanes(w_columns, st.w[0]);
+      const Lanes mv_pairs = {mv[0], mv[1], mv[0], mv[1]};
+      const Lanes sigma_x = {sigma(0, 0), sigma(1, 0), sigma(0, 0), sigma(1, 0)};
+      const Lanes sigma_y = {sigma(0, 1), sigma(1, 1), sigma(0, 1), sigma(1, 1)};
+      for (int b = 0; b < 4; ++b) {
+        const std::size_t row = geo.row_start(st.row0 + b);
+        const double wy = st.w[1][b], gy = st.g[1][b];
+        Lanes mass;
+        load_scalar_row(mass, &g.m[row], st.column, consecutive);
+        mass += (w_columns * wy) * m;
+        store_scalar_row(&g.m[row], st.column, consecutive, mass);
+        RowPairs momentum;
+        load_row(momentum, &g.mv[row], st.column, consecutive);
+        momentum.low += (wx.low * wy) * mv_pairs;
+        momentum.high += (wx.high * wy) * mv_pairs;
+        store_row(&g.mv[row], st.column, consecutive, momentum);
+        RowPairs force;
+        load_row(force, &g.f[row], st.column, consecutive);
+        Lanes t_low = sigma_x * (gx.low * wy), t_high = sigma_x * (gx.high * wy);
+        t_low += sigma_y * (wx.low * gy);
+        t_high += sigma_y * (wx.high * gy);
+        force.low -= V * t_low;
+        force.high -= V * t_high;
+        store_row(&g.f[row], st.column, consecutive, force);
       }
-    });
+    } else {
+      for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
+        g.m[i] += N * m;
+        for (int d = 0; d < D; ++d) g.mv[i][d] += N * mv[d];
+        for (int d = 0; d < D; ++d) {
+          double t = sigma(d, 0) * dN[0];
+          for (int j = 1; j < D; ++j) t += sigma(d, j) * dN[j];
+          g.f[i][d] -= V * t;
+        }
+      });
+    }
   }, [&] { halo.between_colours(g.m, g.mv, g.f); }, [&] { halo.after_colours(g.m, g.mv, g.f); });
 }
 
@@ -96,11 +129,33 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
   auto kernel = [&](std::size_t p) {
     const auto& st = stencils[p];
     Vec<D> acc{}, pic{};
-    for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
-      for (int d = 0; d < D; ++d) acc[d] += N * g.a[i][d];
-      if constexpr (Blend)
-        for (int d = 0; d < D; ++d) pic[d] += N * g.v[i][d];
-    });
+    if constexpr (D == 2 && Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
+      const bool consecutive = consecutive_columns(st);
+      const ColumnPairs wx(st.w[0]);
+      Lanes acc0{}, acc1{}, pic0{}, pic1{};
+      for (int b = 0; b < 4; ++b) {
+        const std::size_t row = geo.row_start(st.row0 + b);
+        const double wy = st.w[1][b];
+        RowPairs an;
+        load_row(an, &g.a[row], st.column, consecutive);
+        acc0 += (wx.low * wy) * an.low;
+        acc1 += (wx.high * wy) * an.high;
+        if constexpr (Blend) {
+          RowPairs vn;
+          load_row(vn, &g.v[row], st.column, consecutive);
+          pic0 += (wx.low * wy) * vn.low;
+          pic1 += (wx.high * wy) * vn.high;
+        }
+      }
+      acc = sum_pairs(acc0 + acc1);
+      if constexpr (Blend) pic = sum_pairs(pic0 + pic1);
+    } else {
+      for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
+        for (int d = 0; d < D; ++d) acc[d] += N * g.a[i][d];
+        if constexpr (Blend)
+          for (int d = 0; d < D; ++d) pic[d] += N * g.v[i][d];
+      });
+    }
     Vec<D>& v = pts.v[p];
     for (int d = 0; d < D; ++d) v[d] = v[d] + dt * acc[d];
     if constexpr (Blend) {
@@ -118,9 +173,24 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
     if constexpr (Remap) {
       Vec<D> mv;
       for (int d = 0; d < D; ++d) mv[d] = pts.m[p] * v[d];
-      for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
-        for (int d = 0; d < D; ++d) g.mv[i][d] += N * mv[d];
-      });
+      if constexpr (D == 2 && Shape::support == 4) {  // each node given what the loop below gives it
+        const bool consecutive = consecutive_columns(st);
+        const ColumnPairs wx(st.w[0]);
+        const Lanes mv_pairs = {mv[0], mv[1], mv[0], mv[1]};
+        for (int b = 0; b < 4; ++b) {
+          const std::size_t row = geo.row_start(st.row0 + b);
+          const double wy = st.w[1][b];
+          RowPairs momentum;
+          load_row(momentum, &g.mv[row], st.column, consecutive);
+          momentum.low += (wx.low * wy) * mv_pairs;
+          momentum.high += (wx.high * wy) * mv_pairs;
+          store_row(&g.mv[row], st.column, consecutive, momentum);
+        }
+      } else {
+        for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
+          for (int d = 0; d < D; ++d) g.mv[i][d] += N * mv[d];
+        });
+      }
     }
   };
   if constexpr (Remap) {
@@ -161,16 +231,56 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
     Mat<D> L{};  // L[u]
     Mat<D> A{};  // L[v^n + u], twice the averaged gradient
     Vec<D> vel{};
-    for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
-      for (int d = 0; d < D; ++d) {
-        const double ud = u[i][d], sd = g.v[i][d] - dt * g.a[i][d] + ud;
-        for (int j = 0; j < D; ++j) {
-          L(d, j) += ud * dN[j];
-          A(d, j) += sd * dN[j];
-        }
-        vel[d] += N * g.v[i][d];
+    bool gathered = false;
+    if constexpr (D == 2 && Shape::support == 4) {
+      // A row's four nodes at once (node_rows.hpp): lanes [x y x y] of two nodes per vector.
+      const bool consecutive = consecutive_columns(st);
+      const ColumnPairs wx(st.w[0]), gx(st.g[0]);
+      Lanes Lx0{}, Lx1{}, Ly0{}, Ly1{}, Ax0{}, Ax1{}, Ay0{}, Ay1{}, V0{}, V1{};
+      for (int b = 0; b < 4; ++b) {
+        const std::size_t row = geo.row_start(st.row0 + b);
+        RowPairs un;
+        load_row(un, &u[row], st.column, consecutive);
+        RowPairs vn;
+        load_row(vn, &g.v[row], st.column, consecutive);
+        RowPairs an;
+        load_row(an, &g.a[row], st.column, consecutive);
+        const Lanes s0 = vn.low - dt * an.low + un.low, s1 = vn.high - dt * an.high + un.high;
+        const double wy = st.w[1][b], gy = st.g[1][b];
+        const Lanes dx0 = gx.low * wy, dx1 = gx.high * wy, dy0 = wx.low * gy, dy1 = wx.high * gy;
+        Lx0 += un.low * dx0;
+        Lx1 += un.high * dx1;
+        Ly0 += un.low * dy0;
+        Ly1 += un.high * dy1;
+        Ax0 += s0 * dx0;
+        Ax1 += s1 * dx1;
+        Ay0 += s0 * dy0;
+        Ay1 += s1 * dy1;
+        V0 += vn.low * (wx.low * wy);
+        V1 += vn.high * (wx.high * wy);
       }
-    });
+      const Vec<2> lx = sum_pairs(Lx0 + Lx1), ly = sum_pairs(Ly0 + Ly1);
+      const Vec<2> ax = sum_pairs(Ax0 + Ax1), ay = sum_pairs(Ay0 + Ay1);
+      for (int d = 0; d < 2; ++d) {
+        L(d, 0) = lx[d];
+        L(d, 1) = ly[d];
+        A(d, 0) = ax[d];
+        A(d, 1) = ay[d];
+      }
+      vel = sum_pairs(V0 + V1);
+      gathered = true;
+    }
+    if (!gathered)
+      for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
+        for (int d = 0; d < D; ++d) {
+          const double ud = u[i][d], sd = g.v[i][d] - dt * g.a[i][d] + ud;
+          for (int j = 0; j < D; ++j) {
+            L(d, j) += ud * dN[j];
+            A(d, j) += sd * dN[j];
+          }
+          vel[d] += N * g.v[i][d];
+        }
+      });
     pts.L[p] = L;
     // sigma : L_avg with sigma = s - (P + q) I; the spin does no work.
     double power = -(pts.P[p] + pts.q[p]) * trace(A);
