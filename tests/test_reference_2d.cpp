@@ -22,7 +22,7 @@
 // kept bitwise as "no_smoothing", the other three bitwise unchanged), and when the passes of the
 // four-column stencils began to take a stencil row's nodes in vector lanes (2026-12-06, issue 32:
 // node_rows.hpp; the gathers' sums grouped by lanes moved the "default" and "no_smoothing" cases'
-// field sums by at most 2.1e-12 relative, the other three bitwise unchanged; written on a build
+// field sums by at most 1.2e-12 relative, the other three bitwise unchanged; written on a build
 // with AVX-512, where the file before was written without it).
 //
 // Bitwise where that is meaningful: floating-point results depend on the compiler and on the

@@ -98,31 +98,27 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
       if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
       const double C = several ? pts.m[p] * capacity[b] : pts.m[p], Cr = C * r, CT = C * T[p];
       const bool rates = r > 0.0;
-      if constexpr (D == 2 && Shape::support == 4) {  // each node given what the loop below gives it
+      if constexpr (Shape::support == 4) {  // each node given what the loop below gives it
         const auto& st = stencils[p];
         const bool consecutive = consecutive_columns(st);
-        Lanes w_columns;
-        load_lanes(w_columns, st.w[0]);
-        for (int b = 0; b < 4; ++b) {
-          const std::size_t row = geo.row_start(st.row0 + b);
-          const Lanes N = w_columns * st.w[1][b];
+        for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
           if (rates) {
             Lanes rate;
             load_scalar_row(rate, &flux.node_rate[row], st.column, consecutive);
-            rate += N * Cr;
+            rate += shape.scalar * Cr;
             store_scalar_row(&flux.node_rate[row], st.column, consecutive, rate);
           }
           Lanes temperature;
           load_scalar_row(temperature, &flux.node_temperature[row], st.column, consecutive);
-          temperature += N * CT;
+          temperature += shape.scalar * CT;
           store_scalar_row(&flux.node_temperature[row], st.column, consecutive, temperature);
           if constexpr (several) {
             Lanes capacity;
             load_scalar_row(capacity, &flux.node_capacity[row], st.column, consecutive);
-            capacity += N * C;
+            capacity += shape.scalar * C;
             store_scalar_row(&flux.node_capacity[row], st.column, consecutive, capacity);
           }
-        }
+        });
       } else {
         for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
           if (rates) flux.node_rate[i] += N * Cr;
@@ -154,20 +150,16 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
 #pragma omp parallel for schedule(dynamic, kChunk)
   for (std::size_t p = range.begin; p < range.end; ++p) {  // 2.
     double heat = 0.0;
-    if constexpr (D == 2 && Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
+    if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       const auto& st = stencils[p];
       const bool consecutive = consecutive_columns(st);
-      Lanes w_columns;
-      load_lanes(w_columns, st.w[0]);
       Lanes lanes{};
-      for (int b = 0; b < 4; ++b) {
-        const std::size_t row = geo.row_start(st.row0 + b);
-        Lanes rate;
+      for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
+        Lanes rate, temperature;
         load_scalar_row(rate, &flux.node_rate[row], st.column, consecutive);
-        Lanes temperature;
         load_scalar_row(temperature, &flux.node_temperature[row], st.column, consecutive);
-        lanes += (w_columns * st.w[1][b]) * rate * (temperature - T[p]);
-      }
+        lanes += shape.scalar * rate * (temperature - T[p]);
+      });
       heat = (lanes[0] + lanes[2]) + (lanes[1] + lanes[3]);
     } else {
       for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {

@@ -1,70 +1,111 @@
-// Four consecutive nodes of a stencil row in the lanes of one vector register (AVX2 width; two SSE2
-// halves on a baseline x86-64 build), for the gathers of 2D stencils of four columns (the default
-// bspline2_domain): a nodal vector field stored as interleaved (x, y) pairs gives a row's eight
-// values in two vectors, [x0 y0 x1 y1] and [x2 y2 x3 y3], and the columns' weights repeat in the
-// same pattern, [w0 w0 w1 w1] and [w2 w2 w3 w3]. A row whose columns wrap around the periodic x
-// boundary is not consecutive: its nodes are loaded and stored one by one into the same lanes, so
-// every point computes the same numbers whichever way. A scatter adds to each node what the scalar
-// loop added, in the same order of points; a gather's sum over the stencil is grouped by lanes,
-// which moves it at round-off from the scalar loop's. Both stay bitwise independent of thread and
-// rank counts.
+// Four consecutive nodes of a stencil row in the lanes of vector registers (AVX2 width; two SSE2
+// halves on a baseline x86-64 build), for the passes of the default four-column stencils
+// (bspline2_domain) in 2D and 3D. A nodal vector field is stored as (x, y) pairs or (x, y, z)
+// triples, so a row's four nodes are D vectors:
+//   2D  [x0 y0 x1 y1] [x2 y2 x3 y3]
+//   3D  [x0 y0 z0 x1] [y1 z1 x2 y2] [z2 x3 y3 z3]
+// and a column weight repeats in the same pattern (2D [w0 w0 w1 w1] [w2 w2 w3 w3]). A scalar field
+// (mass) is one vector [m0 m1 m2 m3]. A row whose columns wrap round the periodic x boundary is not
+// consecutive: its nodes are loaded and stored one by one into the same lanes, so every point
+// computes the same numbers whichever way. Each lane computes a node's weights as for_each_node
+// does (shape.hpp), so a scatter adds to each node what the scalar loop added, in the same order of
+// points; a gather's sum over the stencil is grouped by lanes, which moves it at round-off from the
+// scalar loop's. Both stay bitwise independent of thread and rank counts.
 #pragma once
 
+#include <cstddef>
 #include <cstring>
 
+#include "mpmshock/grid.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/tensor.hpp"
 
-// Without AVX (a portable x86-64 build) the vectors are two SSE2 halves; the helpers take and give
+// Without AVX (a portable x86-64 build) each vector is two SSE2 halves; the helpers take and give
 // them by reference, since by value their ABI would change with AVX (GCC's -Wpsabi note).
 namespace mpmshock {
 
 typedef double Lanes __attribute__((vector_size(32)));
 
-static_assert(sizeof(Vec<2>) == 2 * sizeof(double), "a row of Vec<2> is interleaved (x, y) pairs");
+static_assert(sizeof(Vec<2>) == 2 * sizeof(double) && sizeof(Vec<3>) == 3 * sizeof(double),
+              "a row of Vec<D> is D-tuples of doubles, one after another");
 
 [[gnu::always_inline]] inline void load_lanes(Lanes& v, const double* p) { std::memcpy(&v, p, sizeof v); }
 
+// A row's four nodes of a D-vector field (or D per-node values in the same pattern).
+template <int D>
+struct RowLanes {
+  Lanes v[D];
+};
+
+// The component (x 0, y 1, z 2) and the node (0-3) of lane l of vector k.
+template <int D>
+constexpr int component_of(int k, int l) {
+  return (4 * k + l) % D;
+}
+template <int D>
+constexpr int node_of(int k, int l) {
+  return (4 * k + l) / D;
+}
+
+// A column weight per node, repeated for each node's D components.
+template <int D>
+[[gnu::always_inline]] inline void column_lanes(RowLanes<D>& out, const double* c) {
+  for (int k = 0; k < D; ++k)
+    out.v[k] = Lanes{c[node_of<D>(k, 0)], c[node_of<D>(k, 1)], c[node_of<D>(k, 2)], c[node_of<D>(k, 3)]};
+}
+// A per-point D-vector repeated at each node: 2D [a b a b], 3D [a b c a] [b c a b] [c a b c].
+template <int D>
+[[gnu::always_inline]] inline void component_lanes(RowLanes<D>& out, const double* a) {
+  for (int k = 0; k < D; ++k)
+    out.v[k] = Lanes{a[component_of<D>(k, 0)], a[component_of<D>(k, 1)], a[component_of<D>(k, 2)],
+                     a[component_of<D>(k, 3)]};
+}
+// The sum over the lanes of each component.
+template <int D>
+[[gnu::always_inline]] inline Vec<D> sum_components(const RowLanes<D>& a) {
+  if constexpr (D == 2) {
+    const Lanes s = a.v[0] + a.v[1];
+    return Vec<2>{{s[0] + s[2], s[1] + s[3]}};
+  } else {
+    return Vec<3>{{a.v[0][0] + a.v[0][3] + a.v[1][2] + a.v[2][1], a.v[0][1] + a.v[1][0] + a.v[1][3] + a.v[2][2],
+                   a.v[0][2] + a.v[1][1] + a.v[2][0] + a.v[2][3]}};
+  }
+}
+
 // Whether a stencil's four columns are consecutive (no periodic wrap inside it): then a row's nodes
-// load and store as two vectors, else node by node into the same lanes (the same numbers).
-[[gnu::always_inline]] inline bool consecutive_columns(const Stencil<4, 2>& st) {
+// load and store as whole vectors, else node by node into the same lanes (the same numbers).
+template <int D>
+[[gnu::always_inline]] inline bool consecutive_columns(const Stencil<4, D>& st) {
   return st.column[3] == st.column[0] + 3;
 }
 
-// The interleaved (x, y) values of a stencil row's four nodes; `row` points at the row's node 0.
-struct RowPairs {
-  Lanes low, high;  // nodes 0, 1 and 2, 3
-};
-[[gnu::always_inline]] inline void load_row(RowPairs& v, const Vec<2>* row, const int* column, bool consecutive) {
+// Loads and stores a row of a D-vector field; `row` points at the row's node of column 0.
+template <int D>
+[[gnu::always_inline]] inline void load_row(RowLanes<D>& out, const Vec<D>* row, const int* column, bool consecutive) {
   if (consecutive) {
     const double* p = row[column[0]].c;
-    load_lanes(v.low, p);
-    load_lanes(v.high, p + 4);
+    for (int k = 0; k < D; ++k) load_lanes(out.v[k], p + 4 * k);
     return;
   }
-  const Vec<2>&n0 = row[column[0]], &n1 = row[column[1]], &n2 = row[column[2]], &n3 = row[column[3]];
-  v.low = Lanes{n0.c[0], n0.c[1], n1.c[0], n1.c[1]};
-  v.high = Lanes{n2.c[0], n2.c[1], n3.c[0], n3.c[1]};
+  auto at = [&](int k, int l) { return row[column[node_of<D>(k, l)]].c[component_of<D>(k, l)]; };
+  for (int k = 0; k < D; ++k) out.v[k] = Lanes{at(k, 0), at(k, 1), at(k, 2), at(k, 3)};
 }
-// The four values of a scalar row (mass), one node per lane.
+template <int D>
+[[gnu::always_inline]] inline void store_row(Vec<D>* row, const int* column, bool consecutive, const RowLanes<D>& v) {
+  if (consecutive) {
+    double* p = row[column[0]].c;
+    for (int k = 0; k < D; ++k) std::memcpy(p + 4 * k, &v.v[k], sizeof(Lanes));
+    return;
+  }
+  for (int k = 0; k < D; ++k)
+    for (int l = 0; l < 4; ++l) row[column[node_of<D>(k, l)]].c[component_of<D>(k, l)] = v.v[k][l];
+}
+// ... and of a scalar field, one node per lane.
 [[gnu::always_inline]] inline void load_scalar_row(Lanes& v, const double* row, const int* column, bool consecutive) {
   if (consecutive)
     load_lanes(v, row + column[0]);
   else
     v = Lanes{row[column[0]], row[column[1]], row[column[2]], row[column[3]]};
-}
-// Stores back what load_row and load_scalar_row read.
-[[gnu::always_inline]] inline void store_row(Vec<2>* row, const int* column, bool consecutive, const RowPairs& v) {
-  if (consecutive) {
-    double* p = row[column[0]].c;
-    std::memcpy(p, &v.low, sizeof v.low);
-    std::memcpy(p + 4, &v.high, sizeof v.high);
-    return;
-  }
-  row[column[0]] = Vec<2>{{v.low[0], v.low[1]}};
-  row[column[1]] = Vec<2>{{v.low[2], v.low[3]}};
-  row[column[2]] = Vec<2>{{v.high[0], v.high[1]}};
-  row[column[3]] = Vec<2>{{v.high[2], v.high[3]}};
 }
 [[gnu::always_inline]] inline void store_scalar_row(double* row, const int* column, bool consecutive, const Lanes& v) {
   if (consecutive) {
@@ -74,14 +115,50 @@ struct RowPairs {
   for (int a = 0; a < 4; ++a) row[column[a]] = v[a];
 }
 
-// A column weight per node, repeated for the two components of each: [c0 c0 c1 c1], [c2 c2 c3 c3].
-struct ColumnPairs {
-  Lanes low, high;
-  explicit ColumnPairs(const double* c) : low{c[0], c[0], c[1], c[1]}, high{c[2], c[2], c[3], c[3]} {}
+// The shape of one row of a four-column stencil, as for_each_node computes it per node: the weights
+// N (one per node, `scalar`, and repeated per component, `N`) and the gradient dN[j].
+template <int D>
+struct RowShape {
+  Lanes scalar;
+  RowLanes<D> N;
+  RowLanes<D> dN[D];
 };
 
-
-// The sum of a vector's even lanes (x components) and of its odd lanes (y components).
-[[gnu::always_inline]] inline Vec<2> sum_pairs(const Lanes& a) { return Vec<2>{{a[0] + a[2], a[1] + a[3]}}; }
+// Visits each row of a four-column stencil: f(first node of the row, its shape), rows in
+// for_each_node's order (y outermost, then z).
+template <int D, class F>
+[[gnu::always_inline]] inline void for_each_row(const Stencil<4, D>& st, const GridGeometry<D>& g, F&& f) {
+  RowLanes<D> wx, gx;
+  column_lanes<D>(wx, st.w[0]);
+  column_lanes<D>(gx, st.g[0]);
+  Lanes w_columns;
+  load_lanes(w_columns, st.w[0]);
+  RowShape<D> shape;
+  for (int b = 0; b < 4; ++b) {
+    const double wy = st.w[1][b], gy = st.g[1][b];
+    if constexpr (D == 2) {
+      shape.scalar = w_columns * wy;
+      for (int k = 0; k < 2; ++k) {
+        shape.N.v[k] = wx.v[k] * wy;
+        shape.dN[0].v[k] = gx.v[k] * wy;
+        shape.dN[1].v[k] = wx.v[k] * gy;
+      }
+      f(g.row_start(st.row0 + b), shape);
+    } else {
+      for (int c = 0; c < 4; ++c) {
+        const double wz = st.w[2][c], gz = st.g[2][c];
+        shape.scalar = (w_columns * wy) * wz;
+        for (int k = 0; k < 3; ++k) {
+          const Lanes wxy = wx.v[k] * wy;
+          shape.N.v[k] = wxy * wz;
+          shape.dN[0].v[k] = (gx.v[k] * wy) * wz;
+          shape.dN[1].v[k] = (wx.v[k] * gy) * wz;
+          shape.dN[2].v[k] = wxy * gz;
+        }
+        f(g.row_start(st.row0 + b) + static_cast<std::size_t>(st.layer[c]) * static_cast<std::size_t>(g.nx), shape);
+      }
+    }
+  }
+}
 
 }  // namespace mpmshock

@@ -60,36 +60,33 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
     Vec<D> mv;
     for (int d = 0; d < D; ++d) mv[d] = m * pts.v[p][d];
     const Mat<D> sigma = cauchy_stress<D, Strength, Smoothed>(pts, p);
-    if constexpr (D == 2 && Shape::support == 4) {
+    if constexpr (Shape::support == 4) {
       // A row's four nodes at once (node_rows.hpp), each node given what the loop below gives it.
       const bool consecutive = consecutive_columns(st);
-      const ColumnPairs wx(st.w[0]), gx(st.g[0]);
-      Lanes w_columns;
-      load_lanes(w_columns, st.w[0]);
-      const Lanes mv_pairs = {mv[0], mv[1], mv[0], mv[1]};
-      const Lanes sigma_x = {sigma(0, 0), sigma(1, 0), sigma(0, 0), sigma(1, 0)};
-      const Lanes sigma_y = {sigma(0, 1), sigma(1, 1), sigma(0, 1), sigma(1, 1)};
-      for (int b = 0; b < 4; ++b) {
-        const std::size_t row = geo.row_start(st.row0 + b);
-        const double wy = st.w[1][b], gy = st.g[1][b];
+      RowLanes<D> mv_lanes, sigma_lanes[D];  // sigma_lanes[j]: sigma(d, j) at component d
+      component_lanes<D>(mv_lanes, mv.c);
+      for (int j = 0; j < D; ++j) {
+        double column[D];
+        for (int d = 0; d < D; ++d) column[d] = sigma(d, j);
+        component_lanes<D>(sigma_lanes[j], column);
+      }
+      for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
         Lanes mass;
         load_scalar_row(mass, &g.m[row], st.column, consecutive);
-        mass += (w_columns * wy) * m;
+        mass += shape.scalar * m;
         store_scalar_row(&g.m[row], st.column, consecutive, mass);
-        RowPairs momentum;
+        RowLanes<D> momentum, force;
         load_row(momentum, &g.mv[row], st.column, consecutive);
-        momentum.low += (wx.low * wy) * mv_pairs;
-        momentum.high += (wx.high * wy) * mv_pairs;
-        store_row(&g.mv[row], st.column, consecutive, momentum);
-        RowPairs force;
         load_row(force, &g.f[row], st.column, consecutive);
-        Lanes t_low = sigma_x * (gx.low * wy), t_high = sigma_x * (gx.high * wy);
-        t_low += sigma_y * (wx.low * gy);
-        t_high += sigma_y * (wx.high * gy);
-        force.low -= V * t_low;
-        force.high -= V * t_high;
+        for (int k = 0; k < D; ++k) {
+          momentum.v[k] += shape.N.v[k] * mv_lanes.v[k];
+          Lanes t = sigma_lanes[0].v[k] * shape.dN[0].v[k];
+          for (int j = 1; j < D; ++j) t += sigma_lanes[j].v[k] * shape.dN[j].v[k];
+          force.v[k] -= V * t;
+        }
+        store_row(&g.mv[row], st.column, consecutive, momentum);
         store_row(&g.f[row], st.column, consecutive, force);
-      }
+      });
     } else {
       for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
         g.m[i] += N * m;
@@ -129,26 +126,21 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
   auto kernel = [&](std::size_t p) {
     const auto& st = stencils[p];
     Vec<D> acc{}, pic{};
-    if constexpr (D == 2 && Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
+    if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       const bool consecutive = consecutive_columns(st);
-      const ColumnPairs wx(st.w[0]);
-      Lanes acc0{}, acc1{}, pic0{}, pic1{};
-      for (int b = 0; b < 4; ++b) {
-        const std::size_t row = geo.row_start(st.row0 + b);
-        const double wy = st.w[1][b];
-        RowPairs an;
+      RowLanes<D> acc_lanes{}, pic_lanes{};
+      for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
+        RowLanes<D> an;
         load_row(an, &g.a[row], st.column, consecutive);
-        acc0 += (wx.low * wy) * an.low;
-        acc1 += (wx.high * wy) * an.high;
+        for (int k = 0; k < D; ++k) acc_lanes.v[k] += shape.N.v[k] * an.v[k];
         if constexpr (Blend) {
-          RowPairs vn;
+          RowLanes<D> vn;
           load_row(vn, &g.v[row], st.column, consecutive);
-          pic0 += (wx.low * wy) * vn.low;
-          pic1 += (wx.high * wy) * vn.high;
+          for (int k = 0; k < D; ++k) pic_lanes.v[k] += shape.N.v[k] * vn.v[k];
         }
-      }
-      acc = sum_pairs(acc0 + acc1);
-      if constexpr (Blend) pic = sum_pairs(pic0 + pic1);
+      });
+      acc = sum_components(acc_lanes);
+      if constexpr (Blend) pic = sum_components(pic_lanes);
     } else {
       for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
         for (int d = 0; d < D; ++d) acc[d] += N * g.a[i][d];
@@ -173,19 +165,16 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
     if constexpr (Remap) {
       Vec<D> mv;
       for (int d = 0; d < D; ++d) mv[d] = pts.m[p] * v[d];
-      if constexpr (D == 2 && Shape::support == 4) {  // each node given what the loop below gives it
+      if constexpr (Shape::support == 4) {  // each node given what the loop below gives it
         const bool consecutive = consecutive_columns(st);
-        const ColumnPairs wx(st.w[0]);
-        const Lanes mv_pairs = {mv[0], mv[1], mv[0], mv[1]};
-        for (int b = 0; b < 4; ++b) {
-          const std::size_t row = geo.row_start(st.row0 + b);
-          const double wy = st.w[1][b];
-          RowPairs momentum;
+        RowLanes<D> mv_lanes;
+        component_lanes<D>(mv_lanes, mv.c);
+        for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
+          RowLanes<D> momentum;
           load_row(momentum, &g.mv[row], st.column, consecutive);
-          momentum.low += (wx.low * wy) * mv_pairs;
-          momentum.high += (wx.high * wy) * mv_pairs;
+          for (int k = 0; k < D; ++k) momentum.v[k] += shape.N.v[k] * mv_lanes.v[k];
           store_row(&g.mv[row], st.column, consecutive, momentum);
-        }
+        });
       } else {
         for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
           for (int d = 0; d < D; ++d) g.mv[i][d] += N * mv[d];
@@ -232,42 +221,32 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
     Mat<D> A{};  // L[v^n + u], twice the averaged gradient
     Vec<D> vel{};
     bool gathered = false;
-    if constexpr (D == 2 && Shape::support == 4) {
-      // A row's four nodes at once (node_rows.hpp): lanes [x y x y] of two nodes per vector.
+    if constexpr (Shape::support == 4) {
+      // A row's four nodes at once (node_rows.hpp); lanes of L(d, j) and A(d, j) by column j.
       const bool consecutive = consecutive_columns(st);
-      const ColumnPairs wx(st.w[0]), gx(st.g[0]);
-      Lanes Lx0{}, Lx1{}, Ly0{}, Ly1{}, Ax0{}, Ax1{}, Ay0{}, Ay1{}, V0{}, V1{};
-      for (int b = 0; b < 4; ++b) {
-        const std::size_t row = geo.row_start(st.row0 + b);
-        RowPairs un;
+      RowLanes<D> L_lanes[D]{}, A_lanes[D]{}, vel_lanes{};
+      for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
+        RowLanes<D> un, vn, an;
         load_row(un, &u[row], st.column, consecutive);
-        RowPairs vn;
         load_row(vn, &g.v[row], st.column, consecutive);
-        RowPairs an;
         load_row(an, &g.a[row], st.column, consecutive);
-        const Lanes s0 = vn.low - dt * an.low + un.low, s1 = vn.high - dt * an.high + un.high;
-        const double wy = st.w[1][b], gy = st.g[1][b];
-        const Lanes dx0 = gx.low * wy, dx1 = gx.high * wy, dy0 = wx.low * gy, dy1 = wx.high * gy;
-        Lx0 += un.low * dx0;
-        Lx1 += un.high * dx1;
-        Ly0 += un.low * dy0;
-        Ly1 += un.high * dy1;
-        Ax0 += s0 * dx0;
-        Ax1 += s1 * dx1;
-        Ay0 += s0 * dy0;
-        Ay1 += s1 * dy1;
-        V0 += vn.low * (wx.low * wy);
-        V1 += vn.high * (wx.high * wy);
+        for (int k = 0; k < D; ++k) {
+          const Lanes sum = vn.v[k] - dt * an.v[k] + un.v[k];
+          for (int j = 0; j < D; ++j) {
+            L_lanes[j].v[k] += un.v[k] * shape.dN[j].v[k];
+            A_lanes[j].v[k] += sum * shape.dN[j].v[k];
+          }
+          vel_lanes.v[k] += vn.v[k] * shape.N.v[k];
+        }
+      });
+      for (int j = 0; j < D; ++j) {
+        const Vec<D> l = sum_components(L_lanes[j]), s2 = sum_components(A_lanes[j]);
+        for (int d = 0; d < D; ++d) {
+          L(d, j) = l[d];
+          A(d, j) = s2[d];
+        }
       }
-      const Vec<2> lx = sum_pairs(Lx0 + Lx1), ly = sum_pairs(Ly0 + Ly1);
-      const Vec<2> ax = sum_pairs(Ax0 + Ax1), ay = sum_pairs(Ay0 + Ay1);
-      for (int d = 0; d < 2; ++d) {
-        L(d, 0) = lx[d];
-        L(d, 1) = ly[d];
-        A(d, 0) = ax[d];
-        A(d, 1) = ay[d];
-      }
-      vel = sum_pairs(V0 + V1);
+      vel = sum_components(vel_lanes);
       gathered = true;
     }
     if (!gathered)
