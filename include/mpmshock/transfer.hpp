@@ -220,7 +220,6 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
     Mat<D> L{};  // L[u]
     Mat<D> A{};  // L[v^n + u], twice the averaged gradient
     Vec<D> vel{};
-    bool gathered = false;
     if constexpr (Shape::support == 4) {
       // A row's four nodes at once (node_rows.hpp); lanes of L(d, j) and A(d, j) by column j.
       const bool consecutive = consecutive_columns(st);
@@ -247,9 +246,7 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
         }
       }
       vel = sum_components(vel_lanes);
-      gathered = true;
-    }
-    if (!gathered)
+    } else {
       for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
         for (int d = 0; d < D; ++d) {
           const double ud = u[i][d], sd = g.v[i][d] - dt * g.a[i][d] + ud;
@@ -260,6 +257,7 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
           vel[d] += N * g.v[i][d];
         }
       });
+    }
     pts.L[p] = L;
     // sigma : L_avg with sigma = s - (P + q) I; the spin does no work.
     double power = -(pts.P[p] + pts.q[p]) * trace(A);
