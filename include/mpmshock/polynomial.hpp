@@ -20,6 +20,7 @@
 #include <string_view>
 
 #include "mpmshock/material.hpp"
+#include "mpmshock/pressure_terms.hpp"
 #include "mpmshock/rankine_hugoniot.hpp"
 
 namespace mpmshock {
@@ -34,7 +35,7 @@ struct PolynomialConstants {
   bool present() const { return c1 > 0.0; }
 };
 
-class Polynomial {
+class Polynomial : public FromPressureTerms<Polynomial> {
  public:
   using Constants = PolynomialConstants;
   // Its keys and checks (src/laws/polynomial.cpp), the word equation_of_state takes for it, and its
@@ -60,34 +61,10 @@ class Polynomial {
   double fit_limit() const { return J_fit_; }
   double reference_sound_speed() const { return std::sqrt(std::max(0.0, c_.c1 + c_.c0 * c_.c4) / rho0_); }
 
-  struct State {
-    double pressure, sound_speed_squared;
-  };
-  State state(double J, double E) const {
-    const Terms t = terms(J, E);
-    const double rho = rho0_ / J;
-    return {t.P, t.dP_drho + t.P / (rho * rho) * t.dP_dE};
-  }
-  double pressure(double J, double E) const { return terms(J, E).P; }
-  // (dP/dE) at fixed volume: (C4 + C5 mu + C6 mu^2) rho0.
-  double pressure_energy_slope(double J, double E) const { return terms(J, E).dP_dE; }
-  // Both at once, for the isentrope's tabulation (temperature.cpp).
-  struct PressureAndSlope {
-    double pressure, energy_slope;
-  };
-  PressureAndSlope pressure_and_energy_slope(double J, double E) const {
-    const Terms t = terms(J, E);
-    return {t.P, t.dP_dE};
-  }
-  double sound_speed_squared(double J, double E, double /*P*/) const { return state(J, E).sound_speed_squared; }
-
   static constexpr double kLimitingCompression = 0.2;
 
- private:
-  struct Terms {
-    double P, dP_drho, dP_dE;
-  };
-  Terms terms(double J, double E) const {
+  // P, (dP/drho)_E and (dP/dE)_rho of a state (pressure_terms.hpp derives the rest).
+  PressureTerms terms(double J, double E) const {
     const double mu = 1.0 / J - 1.0;
     const bool compressed = mu >= 0.0;
     const double c2 = compressed ? c_.c2 : 0.0, c6 = compressed ? c_.c6 : 0.0;
@@ -98,6 +75,7 @@ class Polynomial {
     return {P, dP_dmu / rho0_, energy_factor * rho0_};
   }
 
+ private:
   double rho0_ = 2700.0;
   Constants c_;
   double J_fit_ = kLimitingCompression;

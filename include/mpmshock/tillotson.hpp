@@ -23,6 +23,7 @@
 #include <string_view>
 
 #include "mpmshock/material.hpp"
+#include "mpmshock/pressure_terms.hpp"
 #include "mpmshock/rankine_hugoniot.hpp"
 
 namespace mpmshock {
@@ -45,7 +46,7 @@ struct TillotsonConstants {
   bool present() const { return bulk_modulus > 0.0; }
 };
 
-class Tillotson {
+class Tillotson : public FromPressureTerms<Tillotson> {
  public:
   using Constants = TillotsonConstants;
   // Its keys and checks (src/laws/tillotson.cpp), and the word equation_of_state takes for it; its
@@ -75,45 +76,22 @@ class Tillotson {
   // The bulk sound speed of the reference state, sqrt(A / rho0).
   double reference_sound_speed() const { return std::sqrt(A_ / rho0_); }
 
-  struct State {
-    double pressure, sound_speed_squared;
-  };
-  State state(double J, double E) const {
-    const Terms t = terms(J, E);
-    const double rho = rho0_ / J;
-    return {t.P, t.dP_drho + t.P / (rho * rho) * t.dP_dE};
-  }
-  double pressure(double J, double E) const { return terms(J, E).P; }
-  // (dP/dE) at fixed volume: gamma / V, the Grüneisen parameter's share of the state.
-  double pressure_energy_slope(double J, double E) const { return terms(J, E).dP_dE; }
-  // Both at once, for the isentrope's tabulation (temperature.cpp).
-  struct PressureAndSlope {
-    double pressure, energy_slope;
-  };
-  PressureAndSlope pressure_and_energy_slope(double J, double E) const {
-    const Terms t = terms(J, E);
-    return {t.P, t.dP_dE};
-  }
-  // The squared sound speed of a state (P follows from J and E).
-  double sound_speed_squared(double J, double E, double /*P*/) const { return state(J, E).sound_speed_squared; }
-
   static constexpr double kLimitingCompression = 0.2;
 
- private:
-  struct Terms {
-    double P, dP_drho, dP_dE;
-  };
-  Terms terms(double J, double E) const {
+  // P, (dP/drho)_E and (dP/dE)_rho of a state (pressure_terms.hpp derives the rest).
+  PressureTerms terms(double J, double E) const {
     if (J <= 1.0 || E <= E_iv_) return compressed(J, E);
     if (E >= E_cv_) return expanded(J, E);
-    const Terms c = compressed(J, E), e = expanded(J, E);
+    const PressureTerms c = compressed(J, E), e = expanded(J, E);
     const double w = (E - E_iv_) / (E_cv_ - E_iv_);
     return {w * e.P + (1.0 - w) * c.P, w * e.dP_drho + (1.0 - w) * c.dP_drho,
             w * e.dP_dE + (1.0 - w) * c.dP_dE + (e.P - c.P) / (E_cv_ - E_iv_)};
   }
+
+ private:
   // omega and the derivative of b rho E / omega along rho at fixed E:
   // d/drho (b rho E / omega) = b E / omega + 2 b E (omega - 1) / omega^2.
-  Terms compressed(double J, double E) const {
+  PressureTerms compressed(double J, double E) const {
     const double eta = 1.0 / J, rho = rho0_ * eta, mu = eta - 1.0;
     const double omega = E / (E0_ * eta * eta) + 1.0;
     if (!(omega > 0.0)) return nan_terms();
@@ -122,7 +100,7 @@ class Tillotson {
             E * (a_ + b_ * inv_w + 2.0 * b_ * (omega - 1.0) * inv_w * inv_w) + (A_ + 2.0 * B_ * mu) / rho0_,
             rho * (a_ + b_ * inv_w * inv_w)};
   }
-  Terms expanded(double J, double E) const {
+  PressureTerms expanded(double J, double E) const {
     const double eta = 1.0 / J, rho = rho0_ * eta, mu = eta - 1.0, z = J - 1.0;
     const double omega = E / (E0_ * eta * eta) + 1.0;
     if (!(omega > 0.0)) return nan_terms();
@@ -135,7 +113,7 @@ class Tillotson {
     const double dX = -2.0 * alpha_ * z * dz_drho * X;
     return {a_ * rho * E + (G + H) * X, a_ * E + X * (dG + dH) + (G + H) * dX, rho * (a_ + X * b_ * inv_w * inv_w)};
   }
-  static Terms nan_terms() {
+  static PressureTerms nan_terms() {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     return {nan, nan, nan};
   }

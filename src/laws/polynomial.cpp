@@ -47,17 +47,7 @@ MaterialLaw Polynomial::law() {
       c.fail(c.prefix + "bounded_expansion", "is Mie-Grüneisen's expanded branch; the polynomial has its own (" +
                                                  c.named() + "): leave it off with equation_of_state = polynomial");
   };
-  // The paper's model adds the plastic heat to the reference curve's temperature, which carries the
-  // shock heating only where that curve is the Hugoniot.
-  law.check_scene = [](const Scene& s, const std::string&, const auto& fail) {
-    if (s.effects.thermal && s.temperature_model == TemperatureModel::paper)
-      fail("temperature_model", "paper needs equation_of_state = mie_gruneisen: it adds the plastic heat to the "
-                                "Hugoniot's temperature, and the polynomial's reference is its isentrope (the shock "
-                                "heating would be lost)");
-    if (s.effects.thermal && s.paper_temperature)
-      fail("paper_temperature", "needs equation_of_state = mie_gruneisen: the paper's model adds the plastic heat "
-                                "to the Hugoniot's temperature, and the polynomial's reference is its isentrope");
-  };
+  // temperature_model = paper is refused by the registry, as for every law referenced to its isentrope.
   return law;
 }
 

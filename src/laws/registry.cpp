@@ -8,6 +8,7 @@
 
 #include "mpmshock/laws.hpp"
 #include "mpmshock/material_law.hpp"
+#include "mpmshock/scene.hpp"
 
 namespace mpmshock {
 
@@ -16,12 +17,34 @@ MaterialLaw solid_law();
 MaterialLaw bilinear_law();
 MaterialLaw steinberg_guinan_law();
 
+namespace {
+
+// The paper's temperature model adds the plastic heat to the reference curve's temperature, which
+// carries the shock heating only where that curve is the Hugoniot: an equation of state referenced to
+// its isentrope (kHugoniotReference false: Tillotson, the polynomial) refuses it, after its own checks.
+void refuse_paper_temperature(MaterialLaw& law) {
+  law.check_scene = [own = law.check_scene, word = law.name](const Scene& s, const std::string& key, const auto& fail) {
+    own(s, key, fail);
+    const std::string why = "the Hugoniot's temperature, and equation_of_state = " + word + " is referenced to its isentrope";
+    if (s.effects.thermal && s.temperature_model == TemperatureModel::paper)
+      fail("temperature_model", "paper needs equation_of_state = mie_gruneisen: it adds the plastic heat to " + why +
+                                    " (the shock heating would be lost)");
+    if (s.effects.thermal && s.paper_temperature)
+      fail("paper_temperature", "needs equation_of_state = mie_gruneisen: the paper's model adds the plastic heat to " + why);
+  };
+}
+
+}  // namespace
+
 const std::vector<MaterialLaw>& material_laws() {
   static const std::vector<MaterialLaw> laws = [] {
     std::vector<MaterialLaw> all = {solid_law(), bilinear_law(), steinberg_guinan_law()};
-    auto add = [&](auto tag) { all.push_back(std::remove_pointer_t<decltype(tag)>::law()); };
-    for_each_law<OwnStrengthLaw>(add);
-    for_each_law<EquationOfStateLaw>(add);
+    for_each_law<OwnStrengthLaw>([&](auto tag) { all.push_back(std::remove_pointer_t<decltype(tag)>::law()); });
+    for_each_law<EquationOfStateLaw>([&](auto tag) {
+      using Law = std::remove_pointer_t<decltype(tag)>;
+      all.push_back(Law::law());
+      if constexpr (!Law::kHugoniotReference) refuse_paper_temperature(all.back());
+    });
     return all;
   }();
   return laws;

@@ -188,6 +188,9 @@ int main() {
   // The scene: a material without constants is refused by name; with them it parses.
   CHECK(error_of("porosity = 1\nequation_of_state = polynomial\n").find("has no polynomial constants") != std::string::npos);
   CHECK(error_of("porosity = 1\nequation_of_state = polynomial\npolynomial_c1 = 70 GPa\npolynomial_c4 = 2\n").empty());
+  // Referenced to its isentrope, it cannot take the paper's temperature model (registry.cpp).
+  CHECK(error_of("porosity = 1\nequation_of_state = polynomial\npolynomial_c1 = 70 GPa\ntemperature_model = paper\n")
+            .find("key 'temperature_model': paper needs equation_of_state = mie_gruneisen") != std::string::npos);
   CHECK(error_of("porosity = 1\nequation_of_state = polynomial\npolynomial_c1 = 70 GPa\nbounded_expansion = on\n")
             .find("bounded_expansion") != std::string::npos);
 
