@@ -31,28 +31,28 @@ class ExactSum {
   void add(double x) {
     std::uint64_t bits;
     std::memcpy(&bits, &x, sizeof bits);
+    if ((bits << 1) == 0) return;  // +-0, common (states at rest)
     const int exponent = static_cast<int>((bits >> 52) & 0x7ff);
     if (exponent == 0x7ff) {  // NaN or infinity
       const bool nan = (bits & ((std::uint64_t{1} << 52) - 1)) != 0;
       ++words_[nan ? kDigits : (bits >> 63 ? kDigits + 2 : kDigits + 1)];
       return;
     }
-    std::uint64_t significand = bits & ((std::uint64_t{1} << 52) - 1);
-    if (exponent != 0) significand |= std::uint64_t{1} << 52;
-    if (significand == 0) return;
-    // x = significand * 2^(offset - 1074), offset = max(exponent, 1) - 1 in [0, 2045].
-    const int offset = (exponent == 0 ? 1 : exponent) - 1;
+    // x = significand * 2^(offset - 1074), offset = max(exponent, 1) - 1 in [0, 2045]. Without
+    // branches: the sign and the subnormal case as masks, as this runs per point.
+    const std::uint64_t normal = exponent != 0 ? 1 : 0;
+    const std::uint64_t significand = (bits & ((std::uint64_t{1} << 52) - 1)) | (normal << 52);
+    const int offset = exponent - static_cast<int>(normal);
     const int digit = offset >> 5, shift = offset & 31;
-    // significand << shift has up to 85 bits: 64 in `bits64`, the rest in `high`.
+    // significand << shift has up to 85 bits: 64 in `bits64`, the rest in `high` (0 for shift 0).
     const std::uint64_t bits64 = significand << shift;
     const auto low = static_cast<std::int64_t>(bits64 & 0xffffffffu);
     const auto mid = static_cast<std::int64_t>(bits64 >> 32);
-    const auto high = static_cast<std::int64_t>(shift == 0 ? 0 : significand >> (64 - shift));
-    if (bits >> 63) {
-      words_[digit] -= low, words_[digit + 1] -= mid, words_[digit + 2] -= high;
-    } else {
-      words_[digit] += low, words_[digit + 1] += mid, words_[digit + 2] += high;
-    }
+    const auto high = static_cast<std::int64_t>((significand >> 1) >> (63 - shift));
+    const std::int64_t negate = -static_cast<std::int64_t>(bits >> 63);  // -1 for x < 0: (v ^ -1) + 1 = -v
+    words_[digit] += (low ^ negate) - negate;
+    words_[digit + 1] += (mid ^ negate) - negate;
+    words_[digit + 2] += (high ^ negate) - negate;
     if (++additions_ == kAdditionsBeforeCarry) carry();
   }
 
