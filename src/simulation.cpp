@@ -39,6 +39,7 @@ void add_transfer_kernels(Kernels<D>& k, const Model& m) {
   k.support = Shape::support;
   k.first_row = Shape::template first_row<D>;
   k.bin = bin_points<D, Shape>;
+  k.stencils = compute_stencils<D, Shape>;
   k.to_grid = stress ? (smoothing ? particles_to_grid<D, Shape, true, true> : particles_to_grid<D, Shape, true>)
                      : (smoothing ? particles_to_grid<D, Shape, false, true> : particles_to_grid<D, Shape, false>);
   const bool musl = m.scheme == UpdateScheme::musl, blend = m.flip_fraction < 1.0;
@@ -219,8 +220,9 @@ StepStatus Simulation<D>::step(double dt) {
     for (StepEffect<D>* e : in_slot(slot)) (e->*act)(c);
   };
   grid_.reset(c.rows);                                                 // reset grid
+  kernels_.stencils(points_, reached, grid_.geo, stencils_);           // N_ip, grad N_ip
   run(StepSlot::before_to_grid, &StepEffect<D>::before_to_grid);       //   (smoothing: (P + q)-bar_p)
-  kernels_.to_grid(points_, bins_, grid_, stencils_, halo_);           // P2G: m_i, p_i, f_i (and N_ip)
+  kernels_.to_grid(points_, bins_, grid_, stencils_, halo_);           // P2G: m_i, p_i, f_i
   run(StepSlot::after_to_grid, &StepEffect<D>::after_to_grid);         //   (plane's fold; conduction, heat flux: E_p)
   update_grid_momentum(grid_, c.rows, dt);                             // a_i, v_i^{n+1}
   run(StepSlot::after_grid_update, &StepEffect<D>::after_grid_update); //   (boundary conditions)

@@ -2,10 +2,12 @@
 // matching finite differences, and periodic wrap at the seam, for every shape type; and the
 // quadrature of a uniformly compressed lattice of points: sum_p V_p grad N_i(x_p) = 0 at every
 // interior node for any offset from the grid where the points' domains tile the material (gimp,
-// bspline2_domain), which bspline2 at points does not give.
+// bspline2_domain), which bspline2 at points does not give; and the domain B-spline's stencils
+// computed four points at a time equal to the bytes those computed one at a time.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -135,6 +137,49 @@ int main() {
       if (J == 1.0) CHECK(bspline < 1e-12);
       if (J == 0.87) CHECK(bspline > 0.01);  // the error bspline2_domain exists to remove
     }
+  }
+
+  {
+    // Four points at a time (the step's compute_stencils) give each point the bytes at() gives it
+    // alone, whatever shares its vector: points at the seams, a NaN, a far point, and their mix.
+    std::uniform_real_distribution<double> ux(0.0, g.width()), uy(g.y_min + 3 * g.h, g.y_max() - 3 * g.h),
+        uf(0.3, 1.6);
+    std::vector<Vec<2>> xs;
+    std::vector<Mat<2>> Fs;
+    for (int k = 0; k < 400; ++k) {
+      Mat<2> F{};
+      F(0, 0) = uf(rng);
+      F(1, 1) = uf(rng);
+      F(0, 1) = 0.1;
+      xs.push_back(Vec<2>{{ux(rng), uy(rng)}});
+      Fs.push_back(F);
+    }
+    xs[1] = Vec<2>{{1e-9 * g.h, 0.0}};
+    xs[2] = Vec<2>{{g.width() * (1 - 1e-9), 0.0}};
+    xs[5] = Vec<2>{{std::nan(""), 0.0}};
+    xs[6] = Vec<2>{{0.0, 1e9}};
+    using Domain = QuadraticBSplineDomainShape;
+    for (std::size_t k = 0; k + 4 <= xs.size(); k += 4) {
+      const Vec<2>* x[4] = {&xs[k], &xs[k + 1], &xs[k + 2], &xs[k + 3]};
+      const Mat<2>* F[4] = {&Fs[k], &Fs[k + 1], &Fs[k + 2], &Fs[k + 3]};
+      Stencil<4, 2> four[4];
+      Stencil<4, 2>* out[4] = {&four[0], &four[1], &four[2], &four[3]};
+      Domain::at_four(x, F, g, out);
+      for (int l = 0; l < 4; ++l) {
+        const Stencil<4, 2> alone = Domain::at(*x[l], g, *F[l]);
+        CHECK(std::equal(alone.column, alone.column + 4, four[l].column) && alone.row0 == four[l].row0);
+        bool same = true;
+        for (int axis = 0; axis < 2; ++axis)
+          for (int a = 0; a < 4; ++a) {
+            same = same && std::memcmp(&alone.w[axis][a], &four[l].w[axis][a], sizeof(double)) == 0;
+            same = same && std::memcmp(&alone.g[axis][a], &four[l].g[axis][a], sizeof(double)) == 0;
+          }
+        CHECK(same);
+      }
+    }
+    // ... and the first row it gives is the one the bins and the left-grid check use.
+    for (std::size_t k = 0; k < xs.size(); ++k)
+      if (k != 5) CHECK(Domain::at(xs[k], g, Fs[k]).row0 == Domain::first_row(xs[k][1], g));
   }
 
   // Periodic seam: a point just left of x = width touches column 0 as its right neighbour.

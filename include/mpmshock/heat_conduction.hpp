@@ -71,7 +71,7 @@ void conduct_heat(Particles<D>& pts, PointRange range, const StripBins& bins, co
                   const StencilStore<D>& store, const Halo<D>& halo, const BodyTemperatures& thermal,
                   HeatConduction& h, const SymmetryPlane<D>* plane, double dt) {
   const GridGeometry<D>& geo = g.geo;
-  const auto& stencils = store.template of<Shape::support>();  // P2G's, of the same x and F
+  const auto& stencils = store.template of<Shape::support>();  // the step's, of the same x and F
   const RowRange rows = bins.rows();
   auto fold = [&](std::vector<double>& field) {
     if (plane) plane->fold_scalar(g, field, rows);

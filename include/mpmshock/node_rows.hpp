@@ -1,7 +1,6 @@
-// Four consecutive nodes of a stencil row in the lanes of vector registers (AVX2 width; two SSE2
-// halves on a baseline x86-64 build), for the passes of the default four-column stencils
-// (bspline2_domain) in 2D and 3D. A nodal vector field is stored as (x, y) pairs or (x, y, z)
-// triples, so a row's four nodes are D vectors:
+// Four consecutive nodes of a stencil row in the lanes of vector registers (lanes.hpp), for the
+// passes of the default four-column stencils (bspline2_domain) in 2D and 3D. A nodal vector field
+// is stored as (x, y) pairs or (x, y, z) triples, so a row's four nodes are D vectors:
 //   2D  [x0 y0 x1 y1] [x2 y2 x3 y3]
 //   3D  [x0 y0 z0 x1] [y1 z1 x2 y2] [z2 x3 y3 z3]
 // and a column weight repeats in the same pattern (2D [w0 w0 w1 w1] [w2 w2 w3 w3]). A scalar field
@@ -17,19 +16,14 @@
 #include <cstring>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/lanes.hpp"
 #include "mpmshock/shape.hpp"
 #include "mpmshock/tensor.hpp"
 
-// Without AVX (a portable x86-64 build) each vector is two SSE2 halves; the helpers take and give
-// them by reference, since by value their ABI would change with AVX (GCC's -Wpsabi note).
 namespace mpmshock {
-
-typedef double Lanes __attribute__((vector_size(32)));
 
 static_assert(sizeof(Vec<2>) == 2 * sizeof(double) && sizeof(Vec<3>) == 3 * sizeof(double),
               "a row of Vec<D> is D-tuples of doubles, one after another");
-
-[[gnu::always_inline]] inline void load_lanes(Lanes& v, const double* p) { std::memcpy(&v, p, sizeof v); }
 
 // A row's four nodes of a D-vector field (or D per-node values in the same pattern).
 template <int D>
@@ -94,7 +88,7 @@ template <int D>
 [[gnu::always_inline]] inline void store_row(Vec<D>* row, const int* column, bool consecutive, const RowLanes<D>& v) {
   if (consecutive) {
     double* p = row[column[0]].c;
-    for (int k = 0; k < D; ++k) std::memcpy(p + 4 * k, &v.v[k], sizeof(Lanes));
+    for (int k = 0; k < D; ++k) store_lanes(p + 4 * k, v.v[k]);
     return;
   }
   for (int k = 0; k < D; ++k)
@@ -109,7 +103,7 @@ template <int D>
 }
 [[gnu::always_inline]] inline void store_scalar_row(double* row, const int* column, bool consecutive, const Lanes& v) {
   if (consecutive) {
-    std::memcpy(row + column[0], &v, sizeof v);
+    store_lanes(row + column[0], v);
     return;
   }
   for (int a = 0; a < 4; ++a) row[column[a]] = v[a];

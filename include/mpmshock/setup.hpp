@@ -40,7 +40,7 @@ struct InitialState {
 };
 
 // The step's scratch per point besides the points' own fields: the scatter bins and the stencil
-// P2G keeps for the passes after it.
+// the step's passes share.
 template <int D>
 std::size_t step_scratch_bytes(const Scene& s) {
   return StripBins::kBytesPerPoint + StencilStore<D>::bytes_per_point(support_of(s.shape_function));

@@ -21,9 +21,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/lanes.hpp"
 
 namespace mpmshock {
 
@@ -39,9 +41,9 @@ struct Stencil {
   double g[D][S];   // 1D derivatives [1/m]
 };
 
-// The stencils of a step's points, one per point by storage index: P2G computes each once, and the
-// passes after it in the same step (heat conduction, G2P, the velocity gradient) read it again, since
-// a point's x and F do not change until the step moves and updates it.
+// The stencils of a step's points, one per point by storage index: computed once at the step's start
+// (compute_stencils, transfer.hpp), and read by every pass of the step before the points move (P2G,
+// heat conduction, G2P, the velocity gradient), since a point's x and F do not change until then.
 template <int D>
 struct StencilStore {
   std::vector<Stencil<2, D>> linear;     // bilinear (trilinear) cells
@@ -111,6 +113,7 @@ template <class Rule, int S, int D>
 
 // Rules without a point domain ignore its half-width.
 struct PointRule {
+  static constexpr bool kLanes = false;
   static double half_width(double, double) { return 0.0; }
 };
 
@@ -125,6 +128,7 @@ struct LinearRule : PointRule {
 };
 
 struct GimpRule {
+  static constexpr bool kLanes = false;
   static int base(double u) { return floor_index(u + 0.5) - 1; }
   // cpGIMP: the initial half-width lp0 (cells) stretched by F_aa, at most 1/2 so that the domain
   // stays within the 3 nodes (a point stretched past twice its size is held at half a cell).
@@ -173,46 +177,108 @@ struct QuadraticBSplineRule : PointRule {
 // (a uniformly compressed lattice) then integrate a uniform stress exactly: sum_p V_p grad N_i = 0
 // for any offset from the grid, which a lattice of points compressed to J h / 2 does not do with
 // the B-spline at points (at J = 0.87 the nodal force of a uniform stress errs by 5.7 % of it, and
-// material moving across the grid turns that into noise). 4 nodes per axis.
+// material moving across the grid turns that into noise). 4 nodes per axis. Computed for four points
+// at once, one per lane (lanes.hpp; lane_stencils below), selects in place of branches.
 struct QuadraticBSplineDomainRule {
+  static constexpr bool kLanes = true;
   static int base(double u) { return floor_index(u) - 1; }
+  [[gnu::always_inline]] static void base(LaneInts& first, const Lanes& u) {
+    floor_lanes(first, u);
+    first -= 1;
+  }
   // As cpGIMP's: lp0 |F_aa|, which tiles the material where F is diagonal (the uniaxial strain of
   // a plane shock), not under shear or rotation; held within [1e-3, 1/2] cells, so that a point
   // rotated a quarter turn (F_aa = 0) takes the B-spline at a point (the weights divide by lp; at
-  // 1e-3 they differ from the B-spline's by 2e-7 and lose 13 digits to none).
-  static double half_width(double lp0, double F_aa) { return std::clamp(lp0 * std::abs(F_aa), 1e-3, 0.5); }
-  // The B-spline at s and its integral from -3/2, both from t = |s| (the spline is even, the
-  // integral 1/2 + sign(s) times the one from 0): selects, not a chain of branches.
-  [[gnu::always_inline]] static double spline(double s) {
-    const double t = std::abs(s), u = 1.5 - t;
-    const double v = t < 0.5 ? 0.75 - t * t : 0.5 * u * u;
-    return t < 1.5 ? v : 0.0;
-  }
-  [[gnu::always_inline]] static double integral(double s) {
-    const double t = std::abs(s), u = 1.5 - t;
-    const double half = t < 0.5 ? t * (0.75 - t * t * (1.0 / 3.0)) : 0.5 - u * u * u * (1.0 / 6.0);
-    return 0.5 + std::copysign(t < 1.5 ? half : 0.5, s);
+  // 1e-3 they differ from the B-spline's by 2e-7 and lose 13 digits to none). As std::clamp.
+  [[gnu::always_inline]] static void half_width(Lanes& lp, double lp0, const Lanes& F_aa) {
+    Lanes magnitude;
+    abs_lanes(magnitude, F_aa);
+    const Lanes stretched = lp0 * magnitude;
+    lp = stretched < 1e-3 ? Lanes{} + 1e-3 : (0.5 < stretched ? Lanes{} + 0.5 : stretched);
   }
   // With d in [1, 2) and lp <= 1/2 the outer nodes' domain ends lie on the spline's outer pieces
   // (node 0: r +- lp in [1/2, 5/2); node 3: in (-5/2, -1/2]), where it is 0.5 max(0, 3/2 - |s|)^2;
   // node 1 takes the general form, node 2 the partition of unity.
-  [[gnu::always_inline]] static void weights(double d, double lp, double* w, double* dw) {  // d in [1, 2)
-    const double inv = 0.5 / lp;
-    auto tail = [](double s) { return std::max(0.0, 1.5 - s); };  // 3/2 - |s| on the outer piece, s >= 1/2
-    const double p0 = tail(d - lp), q0 = tail(d + lp);            // node 0 at r = d
+  [[gnu::always_inline]] static void weights(const Lanes& d, const Lanes& lp, Lanes* w, Lanes* dw) {  // d in [1, 2)
+    const Lanes inv = 0.5 / lp;
+    // 3/2 - |s| on the outer piece (s >= 1/2), as std::max(0.0, 1.5 - s)
+    auto tail = [](const Lanes& s) __attribute__((always_inline)) {
+      const Lanes t = 1.5 - s;
+      return 0.0 < t ? t : Lanes{};
+    };
+    // The B-spline at s and its integral from -3/2, both from t = |s| (the spline is even, the
+    // integral 1/2 + sign(s) times the one from 0).
+    auto spline = [](const Lanes& s) __attribute__((always_inline)) {
+      Lanes t;
+      abs_lanes(t, s);
+      const Lanes u = 1.5 - t;
+      const Lanes v = t < 0.5 ? 0.75 - t * t : 0.5 * u * u;
+      return t < 1.5 ? v : Lanes{};
+    };
+    auto integral = [](const Lanes& s) __attribute__((always_inline)) {
+      Lanes t, signed_half;
+      abs_lanes(t, s);
+      const Lanes u = 1.5 - t;
+      const Lanes half = t < 0.5 ? t * (0.75 - t * t * (1.0 / 3.0)) : 0.5 - u * u * u * (1.0 / 6.0);
+      copysign_lanes(signed_half, t < 1.5 ? half : Lanes{} + 0.5, s);
+      return 0.5 + signed_half;
+    };
+    const Lanes p0 = tail(d - lp), q0 = tail(d + lp);  // node 0 at r = d
     w[0] = (p0 * p0 * p0 - q0 * q0 * q0) * (1.0 / 6.0) * inv;
     dw[0] = 0.5 * (q0 * q0 - p0 * p0) * inv;
     // node 3 at r = d - 3 < 0, by symmetry: M(s) = tail(-s)^3 / 6 and B(s) = tail(-s)^2 / 2 there
-    const double p3 = tail(3.0 - d + lp), q3 = tail(3.0 - d - lp);  // tail(-(r - lp)), tail(-(r + lp))
+    const Lanes p3 = tail(3.0 - d + lp), q3 = tail(3.0 - d - lp);  // tail(-(r - lp)), tail(-(r + lp))
     w[3] = (q3 * q3 * q3 - p3 * p3 * p3) * (1.0 / 6.0) * inv;
     dw[3] = 0.5 * (q3 * q3 - p3 * p3) * inv;
-    const double r1 = d - 1.0;
+    const Lanes r1 = d - 1.0;
     w[1] = (integral(r1 + lp) - integral(r1 - lp)) * inv;
     dw[1] = (spline(r1 + lp) - spline(r1 - lp)) * inv;
     w[2] = 1.0 - w[0] - w[1] - w[3];
     dw[2] = -(dw[0] + dw[1] + dw[3]);
   }
 };
+
+// Four points' stencils at once, point l in lane l of each weight (Rule::kLanes rules): every lane
+// computes its point's weights by the same operations, so a point's stencil is the same whichever
+// points share its vector (lanes.hpp).
+template <class Rule, int D>
+[[gnu::always_inline]] inline void lane_stencils(const Vec<D>* const* x, const Mat<D>* const* F, const GridGeometry<D>& g,
+                                                 Stencil<4, D>* const* out) {
+  for (int axis = 0; axis < D; ++axis) {
+    Lanes u{x[0]->c[axis], x[1]->c[axis], x[2]->c[axis], x[3]->c[axis]};
+    u = (axis == 1 ? u - g.y_min : u) * g.inv_h;
+    const Lanes stretch{(*F[0])(axis, axis), (*F[1])(axis, axis), (*F[2])(axis, axis), (*F[3])(axis, axis)};
+    LaneInts first;
+    Rule::base(first, u);
+    Lanes lp, w[4], dw[4];
+    Rule::half_width(lp, g.lp, stretch);
+    Rule::weights(u - __builtin_convertvector(first, Lanes), lp, w, dw);
+    for (int a = 0; a < 4; ++a) dw[a] *= g.inv_h;
+    transpose_lanes(w);
+    transpose_lanes(dw);
+    for (int l = 0; l < 4; ++l) {
+      store_lanes(out[l]->w[axis], w[l]);
+      store_lanes(out[l]->g[axis], dw[l]);
+    }
+    if (axis == 1) {
+      for (int l = 0; l < 4; ++l) out[l]->row0 = first[l];
+      continue;
+    }
+    // The periodic axes' node indices, wrapped into [0, n) as wrap() does.
+    const int n = axis == 0 ? g.nx : g.nz;
+    LaneInts index[4];
+    for (int a = 0; a < 4; ++a) {
+      const LaneInts i = first + a;
+      index[a] = i < 0 ? i + n : (i >= n ? i - n : i);
+    }
+    transpose_lanes(index);
+    for (int l = 0; l < 4; ++l) {
+      if (axis == 0) std::memcpy(out[l]->column, &index[l], sizeof index[l]);
+      if constexpr (D == 3)
+        if (axis == 2) std::memcpy(out[l]->layer, &index[l], sizeof index[l]);
+    }
+  }
+}
 
 }  // namespace detail
 
@@ -225,15 +291,34 @@ struct TensorShape {
   static int first_row(double y, const GridGeometry<D>& g) {
     return Rule::base((y - g.y_min) * g.inv_h);
   }
-  // The stencil of a point at x with deformation gradient F (only GIMP's domain uses F).
+  // The stencil of a point at x with deformation gradient F (only the point domains use F).
   template <int D>
   [[gnu::always_inline]] static Stencil<S, D> at(const Vec<D>& x, const GridGeometry<D>& g, const Mat<D>& F) {
-    return detail::tensor_stencil<Rule, S, D>(x, g, F);
+    if constexpr (Rule::kLanes) {  // the point in every lane
+      Stencil<S, D> st;
+      const Vec<D>* xs[4] = {&x, &x, &x, &x};
+      const Mat<D>* Fs[4] = {&F, &F, &F, &F};
+      Stencil<S, D>* outs[4] = {&st, &st, &st, &st};
+      detail::lane_stencils<Rule, D>(xs, Fs, g, outs);
+      return st;
+    } else {
+      return detail::tensor_stencil<Rule, S, D>(x, g, F);
+    }
   }
   // ... of an undeformed point.
   template <int D>
   static Stencil<S, D> at(const Vec<D>& x, const GridGeometry<D>& g) {
-    return detail::tensor_stencil<Rule, S, D>(x, g, Mat<D>::identity());
+    return at<D>(x, g, Mat<D>::identity());
+  }
+  // ... of four points, out[l] that of x[l] with F[l] (the same stencils as at() gives each).
+  template <int D>
+  [[gnu::always_inline]] static void at_four(const Vec<D>* const* x, const Mat<D>* const* F, const GridGeometry<D>& g,
+                                             Stencil<S, D>* const* out) {
+    if constexpr (Rule::kLanes) {
+      detail::lane_stencils<Rule, D>(x, F, g, out);
+    } else {
+      for (int l = 0; l < 4; ++l) *out[l] = detail::tensor_stencil<Rule, S, D>(*x[l], g, *F[l]);
+    }
   }
 };
 

@@ -38,7 +38,8 @@ struct Kernels {
   int support;  // stencil nodes per axis
   int (*first_row)(double y, const GridGeometry<D>&);  // the node row a point's stencil starts at
   bool (*bin)(StripBins&, const Particles<D>&, PointRange, const GridGeometry<D>&);
-  void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&, StencilStore<D>&, const Halo<D>&);
+  void (*stencils)(const Particles<D>&, PointRange, const GridGeometry<D>&, StencilStore<D>&);
+  void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&, const StencilStore<D>&, const Halo<D>&);
   void (*velocity_to_points)(Particles<D>&, PointRange, const StripBins&, Grid<D>&, const StencilStore<D>&,
                              const Halo<D>&, double dt, double flip_fraction);
   std::size_t (*gradient_work_and_move)(Particles<D>&, PointRange, const Grid<D>&, const StencilStore<D>&,
@@ -160,7 +161,7 @@ class Simulation {
   Particles<D> points_;
   Grid<D> grid_;
   StripBins bins_;
-  StencilStore<D> stencils_;  // the step's shape weights, computed once (by P2G, or by smoothing's pressure pass)
+  StencilStore<D> stencils_;  // the step's shape weights, computed once at its start
   Kernels<D> kernels_;
   // The step effects the scene calls for (simulation.cpp: effects_for), each slot's in the order made.
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;

@@ -30,7 +30,7 @@ struct StepContext {
   PointRange reached;  // the points the step computes (unreached.hpp)
   const StripBins& bins;
   Grid<D>& grid;
-  StencilStore<D>& stencils;  // the step's shape weights (P2G computes them; with smoothing its pressure pass)
+  StencilStore<D>& stencils;  // the step's shape weights (compute_stencils, before the effects)
   const Halo<D>& halo;
   const SymmetryPlane<D>* plane;  // symmetry = on, else null
   RowRange rows;                   // the node rows the step's points touch

@@ -42,20 +42,42 @@ inline Mat<D> cauchy_stress(const Particles<D>& pts, std::size_t p) {
   return sigma;
 }
 
-// P2G of mass, momentum and internal force; keeps each point's stencil for the rest of the step
-// (Smoothed: volumetric smoothing's pressure pass computed and kept them already, of the same x and F).
-// On MPI ranks the rows shared with a neighbour are summed across the two (halo.hpp).
-template <int D, class Shape, bool Strength, bool Smoothed = false>
-void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g, StencilStore<D>& store,
-                       const Halo<D>& halo) {
-  const GridGeometry<D>& geo = g.geo;
+// The stencil of every point of `range` for the step (its nodes, 1D weights and derivatives: the
+// N_ip and grad N_ip of every pass until the points move), four points at a time (Shape::at_four).
+// The last group repeats the range's last point in its spare lanes, which are not kept.
+template <int D, class Shape>
+void compute_stencils(const Particles<D>& pts, PointRange range, const GridGeometry<D>& geo, StencilStore<D>& store) {
+  using St = Stencil<Shape::support, D>;
   auto& stencils = store.template of<Shape::support>();
   stencils.resize(pts.size());
+  if (range.end <= range.begin) return;
+  const std::size_t groups = (range.end - range.begin + 3) / 4;
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < groups; ++k) {
+    St spare;
+    const Vec<D>* x[4];
+    const Mat<D>* F[4];
+    St* out[4];
+    for (int l = 0; l < 4; ++l) {
+      const std::size_t p = range.begin + 4 * k + static_cast<std::size_t>(l), q = p < range.end ? p : range.end - 1;
+      x[l] = &pts.x[q];
+      F[l] = &pts.F[q];
+      out[l] = p < range.end ? &stencils[p] : &spare;
+    }
+    Shape::at_four(x, F, geo, out);
+  }
+}
+
+// P2G of mass, momentum and internal force, on the stencils of the step (compute_stencils).
+// On MPI ranks the rows shared with a neighbour are summed across the two (halo.hpp).
+template <int D, class Shape, bool Strength, bool Smoothed = false>
+void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g, const StencilStore<D>& store,
+                       const Halo<D>& halo) {
+  const GridGeometry<D>& geo = g.geo;
+  const auto& stencils = store.template of<Shape::support>();
   halo.zero(g.m, g.mv, g.f);
   bins.scatter([&](std::size_t p) {
-    // (A local copy, not a read of the kept one: FMA contraction would differ, and results with it.)
-    const auto st = Smoothed ? stencils[p] : Shape::at(pts.x[p], geo, pts.F[p]);
-    if constexpr (!Smoothed) stencils[p] = st;
+    const auto& st = stencils[p];
     const double m = pts.m[p], V = pts.volume(p);
     Vec<D> mv;
     for (int d = 0; d < D; ++d) mv[d] = m * pts.v[p][d];

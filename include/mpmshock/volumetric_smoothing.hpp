@@ -26,10 +26,9 @@
 // kept, and the point update adds (tr L-bar - tr L) / D I to it for F alone (in plane strain a
 // shifted in-plane trace would put a spurious deviator into the zz direction).
 //
-// The passes use the step's stencils and bins (the pressure pass, before P2G, computes and keeps the
-// stencils, which P2G then reads), fold their nodal sums across a symmetry plane (the fields are even in y) and sum
-// them across the rows MPI ranks share first, as heat conduction does: the same bits on any number
-// of threads and ranks.
+// The passes use the step's stencils and bins, fold their nodal sums across a symmetry plane (the
+// fields are even in y) and sum them across the rows MPI ranks share first, as heat conduction
+// does: the same bits on any number of threads and ranks.
 #pragma once
 
 #include <vector>
@@ -72,15 +71,13 @@ void zero_active(const GridGeometry<D>& geo, RowRange rows, const Halo<D>& halo,
 // P2G then uses for the pressure part of the stress.
 template <int D, class Shape>
 void smooth_pressure(Particles<D>& pts, PointRange range, const StripBins& bins, const GridGeometry<D>& geo,
-                     StencilStore<D>& store, const Halo<D>& halo, const SymmetryPlane<D>* plane,
+                     const StencilStore<D>& store, const Halo<D>& halo, const SymmetryPlane<D>* plane,
                      const Grid<D>& g, VolumetricSmoothing& vs) {
-  auto& stencils = store.template of<Shape::support>();
-  stencils.resize(pts.size());
+  const auto& stencils = store.template of<Shape::support>();
   const RowRange rows = bins.rows();
   detail::zero_active(geo, rows, halo, vs.node_mass, vs.node_a);
   bins.scatter([&](std::size_t p) {
-    const auto st = Shape::at(pts.x[p], geo, pts.F[p]);
-    stencils[p] = st;
+    const auto& st = stencils[p];
     const double m = pts.m[p], Vpq = pts.volume(p) * (pts.P[p] + pts.q[p]);
     for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
       vs.node_mass[i] += N * m;

@@ -1,0 +1,64 @@
+// Four doubles in the lanes of one vector register (AVX2 width; two SSE2 halves on a baseline
+// x86-64 build), with GCC's vector extensions: arithmetic, comparisons and ?: act lane by lane, so a
+// formula written once computes four independent values, each exactly as it would alone. Used for a
+// stencil row's four nodes (node_rows.hpp) and four points' stencil weights (shape.hpp).
+//
+// Without AVX each vector is two SSE2 halves; helpers take and give vectors by reference, since by
+// value their ABI would change with AVX (GCC's -Wpsabi note).
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace mpmshock {
+
+typedef double Lanes __attribute__((vector_size(32)));
+typedef std::int64_t LaneBits __attribute__((vector_size(32)));  // a lane's bits; comparison results
+typedef std::int32_t LaneInts __attribute__((vector_size(16)));  // an int per lane
+
+[[gnu::always_inline]] inline void load_lanes(Lanes& v, const double* p) { std::memcpy(&v, p, sizeof v); }
+[[gnu::always_inline]] inline void store_lanes(double* p, const Lanes& v) { std::memcpy(p, &v, sizeof v); }
+
+// std::abs and std::copysign lane by lane: the sign bit alone, so the same bits for every input.
+[[gnu::always_inline]] inline void abs_lanes(Lanes& out, const Lanes& x) {
+  const LaneBits sign = LaneBits{} + std::numeric_limits<std::int64_t>::min();
+  out = reinterpret_cast<Lanes>(reinterpret_cast<LaneBits>(x) & ~sign);
+}
+[[gnu::always_inline]] inline void copysign_lanes(Lanes& out, const Lanes& magnitude, const Lanes& sign_of) {
+  const LaneBits sign = LaneBits{} + std::numeric_limits<std::int64_t>::min();
+  out = reinterpret_cast<Lanes>((reinterpret_cast<LaneBits>(magnitude) & ~sign) |
+                                (reinterpret_cast<LaneBits>(sign_of) & sign));
+}
+
+// floor(u) lane by lane as ints, as detail::floor_index (shape.hpp) gives it: u held within
+// [-1e9, 1e9] first (NaN to -1e9), truncated, and one less where that rounded a negative u up.
+[[gnu::always_inline]] inline void floor_lanes(LaneInts& out, const Lanes& u) {
+  Lanes held = u >= -1e9 ? u : Lanes{} - 1e9;
+  held = held > 1e9 ? Lanes{} + 1e9 : held;
+  const LaneInts truncated = __builtin_convertvector(held, LaneInts);
+  const LaneBits rounded_up = __builtin_convertvector(truncated, Lanes) > held;  // -1 where true
+  out = truncated + __builtin_convertvector(rounded_up, LaneInts);
+}
+
+// A 4 x 4 transpose: afterwards v[l] holds lane l of each of the four vectors it held (moves only).
+[[gnu::always_inline]] inline void transpose_lanes(Lanes (&v)[4]) {
+  const LaneBits low{0, 4, 2, 6}, high{1, 5, 3, 7}, front{0, 1, 4, 5}, back{2, 3, 6, 7};
+  const Lanes t0 = __builtin_shuffle(v[0], v[1], low), t1 = __builtin_shuffle(v[0], v[1], high);
+  const Lanes t2 = __builtin_shuffle(v[2], v[3], low), t3 = __builtin_shuffle(v[2], v[3], high);
+  v[0] = __builtin_shuffle(t0, t2, front);
+  v[1] = __builtin_shuffle(t1, t3, front);
+  v[2] = __builtin_shuffle(t0, t2, back);
+  v[3] = __builtin_shuffle(t1, t3, back);
+}
+[[gnu::always_inline]] inline void transpose_lanes(LaneInts (&v)[4]) {
+  const LaneInts low{0, 4, 1, 5}, high{2, 6, 3, 7}, front{0, 1, 4, 5}, back{2, 3, 6, 7};
+  const LaneInts t0 = __builtin_shuffle(v[0], v[1], low), t1 = __builtin_shuffle(v[0], v[1], high);
+  const LaneInts t2 = __builtin_shuffle(v[2], v[3], low), t3 = __builtin_shuffle(v[2], v[3], high);
+  v[0] = __builtin_shuffle(t0, t2, front);
+  v[1] = __builtin_shuffle(t0, t2, back);
+  v[2] = __builtin_shuffle(t1, t3, front);
+  v[3] = __builtin_shuffle(t1, t3, back);
+}
+
+}  // namespace mpmshock
