@@ -1,6 +1,8 @@
 #include "mpmshock/regions.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 
@@ -41,13 +43,8 @@ Band band_of(const RegionSpec& r, double y_top) {
 }
 
 template <int D>
-std::vector<std::size_t> points_in(const Particles<D>& p, const Band& b) {
-  std::vector<std::size_t> out;
-  for (std::size_t q = 0; q < p.size(); ++q) {
-    if (b.target_only && p.body[q] != Body::target) continue;
-    if (p.x[q][1] >= b.lo && p.x[q][1] <= b.hi) out.push_back(q);
-  }
-  return out;
+bool in_band(const Particles<D>& p, std::size_t q, const Band& b) {
+  return (!b.target_only || p.body[q] == Body::target) && p.x[q][1] >= b.lo && p.x[q][1] <= b.hi;
 }
 
 // The quantities of a region: those with a mean and a deviation, those with a mean only, and the
@@ -79,20 +76,25 @@ struct PointValues {
   }
 };
 
-// The band's mass, V P and V (P + q - s_yy), each point counted with the share of its y extent (its
-// initial spacing V0^(1/D) stretched by F_yy) inside [lo, hi].
+// The bands' mass, V P and V (P + q - s_yy), each point counted with the share of its y extent (its
+// initial spacing V0^(1/D) stretched by F_yy) inside [lo, hi]; each point's extent once for all bands.
 template <int D>
-void add_band_sums(const Particles<D>& p, const Band& b, ExactSum* sums) {
+void add_band_sums(const Particles<D>& p, const std::vector<Band>& bands, std::vector<ExactSum>& sums) {
   for (std::size_t q = 0; q < p.size(); ++q) {
-    if (b.target_only && p.body[q] != Body::target) continue;
+    const bool target = p.body[q] == Body::target;
     const double half = 0.5 * std::pow(p.V0[q], 1.0 / D) * std::abs(p.F[q](1, 1));
     const double y = p.x[q][1];
-    const double inside = std::min(b.hi, y + half) - std::max(b.lo, y - half);
-    if (inside <= 0.0) continue;
-    const double share = std::min(1.0, inside / (2.0 * half)), V = share * p.volume(q);
-    sums[kBandMass].add(share * p.m[q]);
-    sums[kBandPressure].add(V * p.P[q]);
-    sums[kBandNormal].add(V * (p.P[q] + p.q[q] - (p.s.empty() ? 0.0 : p.s[q].yy)));
+    for (std::size_t r = 0; r < bands.size(); ++r) {
+      const Band& b = bands[r];
+      if (b.target_only && !target) continue;
+      const double inside = std::min(b.hi, y + half) - std::max(b.lo, y - half);
+      if (inside <= 0.0) continue;
+      const double share = std::min(1.0, inside / (2.0 * half)), V = share * p.volume(q);
+      ExactSum* s = &sums[r * kSums];
+      s[kBandMass].add(share * p.m[q]);
+      s[kBandPressure].add(V * p.P[q]);
+      s[kBandNormal].add(V * (p.P[q] + p.q[q] - (p.s.empty() ? 0.0 : p.s[q].yy)));
+    }
   }
 }
 
@@ -104,19 +106,34 @@ std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector
   const double y_top = target_top(p, comm);
   const PointValues<D> value{p, thermal};
   const std::size_t n = regions.size();
-  // Pass 1, on every rank: counts and sums; then the means, the same on every rank.
-  std::vector<std::vector<std::size_t>> members(n);
+  std::vector<Band> bands(n);
+  for (std::size_t r = 0; r < n; ++r) bands[r] = band_of(regions[r], y_top);
+  // Pass 1, on every rank: counts and sums; then the means, the same on every rank. Each point in
+  // a band has its quantities computed once (the temperature costs most) and kept for pass 2; the
+  // sums are exact, so the order they are added in does not matter.
+  std::vector<std::array<double, kMeans>> values;    // of the points in at least one band
+  std::vector<std::vector<std::uint32_t>> members(n);  // indices into values
+  for (std::size_t q = 0; q < p.size(); ++q) {
+    bool sampled = false;
+    for (std::size_t r = 0; r < n; ++r) {
+      if (!in_band(p, q, bands[r])) continue;
+      if (!sampled) {
+        sampled = true;
+        values.emplace_back();
+        for (int k = 0; k < kMeans; ++k) values.back()[static_cast<std::size_t>(k)] = value(k, q);
+      }
+      members[r].push_back(static_cast<std::uint32_t>(values.size() - 1));
+    }
+  }
   std::vector<ExactSum> sums(n * kSums);
   std::vector<std::int64_t> counts(n);
   for (std::size_t r = 0; r < n; ++r) {
-    const Band b = band_of(regions[r], y_top);
-    members[r] = points_in(p, b);
     counts[r] = static_cast<std::int64_t>(members[r].size());
     ExactSum* s = &sums[r * kSums];
-    for (std::size_t q : members[r])
-      for (int k = 0; k < kMeans; ++k) s[k].add(value(k, q));
-    add_band_sums(p, b, s);
+    for (std::uint32_t m : members[r])
+      for (int k = 0; k < kMeans; ++k) s[k].add(values[m][static_cast<std::size_t>(k)]);
   }
+  add_band_sums(p, bands, sums);
   comm.sum(counts.data(), static_cast<int>(n));
   comm.sum(sums.data(), static_cast<int>(sums.size()));
   std::vector<double> means(n * kMeans);
@@ -126,9 +143,9 @@ std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector
   // Pass 2: the population deviations about those means (no cancellation).
   std::vector<ExactSum> deviations(n * kSpreads);
   for (std::size_t r = 0; r < n; ++r)
-    for (std::size_t q : members[r])
+    for (std::uint32_t m : members[r])
       for (int k = 0; k < kSpreads; ++k) {
-        const double d = value(k, q) - means[r * kMeans + k];
+        const double d = values[m][static_cast<std::size_t>(k)] - means[r * kMeans + k];
         deviations[r * kSpreads + k].add(d * d);
       }
   comm.sum(deviations.data(), static_cast<int>(deviations.size()));
@@ -152,7 +169,7 @@ std::vector<RegionStats> sample_regions(const Particles<D>& p, const std::vector
     s.rot2 = means[r * kMeans + kRot2];
     s.div2 = means[r * kMeans + kDiv2];
     s.strain_rate2 = means[r * kMeans + kStrainRate2];
-    const Band b = band_of(regions[r], y_top);
+    const Band& b = bands[r];
     const double area = (b.hi - b.lo) * cross_section;
     s.macro_density = sums[r * kSums + kBandMass].value() / area;
     s.macro_pressure = sums[r * kSums + kBandPressure].value() / area;
