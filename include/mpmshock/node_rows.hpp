@@ -5,8 +5,8 @@
 //   3D  [x0 y0 z0 x1] [y1 z1 x2 y2] [z2 x3 y3 z3]
 // and a column weight repeats in the same pattern (2D [w0 w0 w1 w1] [w2 w2 w3 w3]). A scalar field
 // (mass) is one vector [m0 m1 m2 m3]. A row whose columns wrap round the periodic x boundary is not
-// consecutive: its nodes are loaded and stored one by one into the same lanes, so every point
-// computes the same numbers whichever way. Each lane computes a node's weights as for_each_node
+// consecutive: its nodes are loaded and stored one by one (in 2D, a node's pair as one half of a
+// vector) into the same lanes, so every point computes the same numbers whichever way. Each lane computes a node's weights as for_each_node
 // does (shape.hpp), so a scatter adds to each node what the scalar loop added, in the same order of
 // points; a gather's sum over the stencil is grouped by lanes, which moves it at round-off from the
 // scalar loop's. Both stay bitwise independent of thread and rank counts.
@@ -81,8 +81,12 @@ template <int D>
     for (int k = 0; k < D; ++k) load_lanes(out.v[k], p + 4 * k);
     return;
   }
-  auto at = [&](int k, int l) { return row[column[node_of<D>(k, l)]].c[component_of<D>(k, l)]; };
-  for (int k = 0; k < D; ++k) out.v[k] = Lanes{at(k, 0), at(k, 1), at(k, 2), at(k, 3)};
+  if constexpr (D == 2) {  // a vector is two whole nodes
+    for (int k = 0; k < 2; ++k) load_halves(out.v[k], row[column[2 * k]].c, row[column[2 * k + 1]].c);
+  } else {
+    auto at = [&](int k, int l) { return row[column[node_of<D>(k, l)]].c[component_of<D>(k, l)]; };
+    for (int k = 0; k < D; ++k) out.v[k] = Lanes{at(k, 0), at(k, 1), at(k, 2), at(k, 3)};
+  }
 }
 template <int D>
 [[gnu::always_inline]] inline void store_row(Vec<D>* row, const int* column, bool consecutive, const RowLanes<D>& v) {
@@ -91,8 +95,12 @@ template <int D>
     for (int k = 0; k < D; ++k) store_lanes(p + 4 * k, v.v[k]);
     return;
   }
-  for (int k = 0; k < D; ++k)
-    for (int l = 0; l < 4; ++l) row[column[node_of<D>(k, l)]].c[component_of<D>(k, l)] = v.v[k][l];
+  if constexpr (D == 2) {
+    for (int k = 0; k < 2; ++k) store_halves(row[column[2 * k]].c, row[column[2 * k + 1]].c, v.v[k]);
+  } else {
+    for (int k = 0; k < D; ++k)
+      for (int l = 0; l < 4; ++l) row[column[node_of<D>(k, l)]].c[component_of<D>(k, l)] = v.v[k][l];
+  }
 }
 // ... and of a scalar field, one node per lane.
 [[gnu::always_inline]] inline void load_scalar_row(Lanes& v, const double* row, const int* column, bool consecutive) {

@@ -201,38 +201,46 @@ struct QuadraticBSplineDomainRule {
   // node 1 takes the general form, node 2 the partition of unity.
   [[gnu::always_inline]] static void weights(const Lanes& d, const Lanes& lp, Lanes* w, Lanes* dw) {  // d in [1, 2)
     const Lanes inv = 0.5 / lp;
-    // 3/2 - |s| on the outer piece (s >= 1/2), as std::max(0.0, 1.5 - s)
-    auto tail = [](const Lanes& s) __attribute__((always_inline)) {
+    // 3/2 - |s| on the outer piece (s >= 1/2), as std::max(0.0, 1.5 - s). (The helpers give their
+    // result through a reference: by value a vector's ABI would change with AVX, GCC's -Wpsabi.)
+    auto tail = [](Lanes& out, const Lanes& s) __attribute__((always_inline)) {
       const Lanes t = 1.5 - s;
-      return 0.0 < t ? t : Lanes{};
+      out = 0.0 < t ? t : Lanes{};
     };
     // The B-spline at s and its integral from -3/2, both from t = |s| (the spline is even, the
     // integral 1/2 + sign(s) times the one from 0).
-    auto spline = [](const Lanes& s) __attribute__((always_inline)) {
+    auto spline = [](Lanes& out, const Lanes& s) __attribute__((always_inline)) {
       Lanes t;
       abs_lanes(t, s);
       const Lanes u = 1.5 - t;
       const Lanes v = t < 0.5 ? 0.75 - t * t : 0.5 * u * u;
-      return t < 1.5 ? v : Lanes{};
+      out = t < 1.5 ? v : Lanes{};
     };
-    auto integral = [](const Lanes& s) __attribute__((always_inline)) {
+    auto integral = [](Lanes& out, const Lanes& s) __attribute__((always_inline)) {
       Lanes t, signed_half;
       abs_lanes(t, s);
       const Lanes u = 1.5 - t;
       const Lanes half = t < 0.5 ? t * (0.75 - t * t * (1.0 / 3.0)) : 0.5 - u * u * u * (1.0 / 6.0);
       copysign_lanes(signed_half, t < 1.5 ? half : Lanes{} + 0.5, s);
-      return 0.5 + signed_half;
+      out = 0.5 + signed_half;
     };
-    const Lanes p0 = tail(d - lp), q0 = tail(d + lp);  // node 0 at r = d
+    Lanes p0, q0, p3, q3, upper, lower;
+    tail(p0, d - lp);  // node 0 at r = d
+    tail(q0, d + lp);
     w[0] = (p0 * p0 * p0 - q0 * q0 * q0) * (1.0 / 6.0) * inv;
     dw[0] = 0.5 * (q0 * q0 - p0 * p0) * inv;
     // node 3 at r = d - 3 < 0, by symmetry: M(s) = tail(-s)^3 / 6 and B(s) = tail(-s)^2 / 2 there
-    const Lanes p3 = tail(3.0 - d + lp), q3 = tail(3.0 - d - lp);  // tail(-(r - lp)), tail(-(r + lp))
+    tail(p3, 3.0 - d + lp);  // tail(-(r - lp))
+    tail(q3, 3.0 - d - lp);  // tail(-(r + lp))
     w[3] = (q3 * q3 * q3 - p3 * p3 * p3) * (1.0 / 6.0) * inv;
     dw[3] = 0.5 * (q3 * q3 - p3 * p3) * inv;
     const Lanes r1 = d - 1.0;
-    w[1] = (integral(r1 + lp) - integral(r1 - lp)) * inv;
-    dw[1] = (spline(r1 + lp) - spline(r1 - lp)) * inv;
+    integral(upper, r1 + lp);
+    integral(lower, r1 - lp);
+    w[1] = (upper - lower) * inv;
+    spline(upper, r1 + lp);
+    spline(lower, r1 - lp);
+    dw[1] = (upper - lower) * inv;
     w[2] = 1.0 - w[0] - w[1] - w[3];
     dw[2] = -(dw[0] + dw[1] + dw[3]);
   }
