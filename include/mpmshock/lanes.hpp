@@ -20,18 +20,29 @@ typedef std::int32_t LaneInts __attribute__((vector_size(16)));  // an int per l
 [[gnu::always_inline]] inline void load_lanes(Lanes& v, const double* p) { std::memcpy(&v, p, sizeof v); }
 [[gnu::always_inline]] inline void store_lanes(double* p, const Lanes& v) { std::memcpy(p, &v, sizeof v); }
 
-// A vector from two 2-lane halves at `low` and `high` (two nodes of (x, y) pairs), and back.
+// A vector from two 2-lane halves (two nodes of (x, y) pairs, or parts of (x, y, z) triples), and
+// its halves back.
 typedef double HalfLanes __attribute__((vector_size(16)));
+[[gnu::always_inline]] inline void load_half(HalfLanes& h, const double* p) { std::memcpy(&h, p, sizeof h); }
+[[gnu::always_inline]] inline void store_half(double* p, const HalfLanes& h) { std::memcpy(p, &h, sizeof h); }
+[[gnu::always_inline]] inline void join_halves(Lanes& v, const HalfLanes& low, const HalfLanes& high) {
+  v = __builtin_shufflevector(low, high, 0, 1, 2, 3);
+}
+[[gnu::always_inline]] inline void split_halves(HalfLanes& low, HalfLanes& high, const Lanes& v) {
+  low = __builtin_shufflevector(v, v, 0, 1);
+  high = __builtin_shufflevector(v, v, 2, 3);
+}
 [[gnu::always_inline]] inline void load_halves(Lanes& v, const double* low, const double* high) {
   HalfLanes a, b;
-  std::memcpy(&a, low, sizeof a);
-  std::memcpy(&b, high, sizeof b);
-  v = __builtin_shufflevector(a, b, 0, 1, 2, 3);
+  load_half(a, low);
+  load_half(b, high);
+  join_halves(v, a, b);
 }
 [[gnu::always_inline]] inline void store_halves(double* low, double* high, const Lanes& v) {
-  const HalfLanes a = __builtin_shufflevector(v, v, 0, 1), b = __builtin_shufflevector(v, v, 2, 3);
-  std::memcpy(low, &a, sizeof a);
-  std::memcpy(high, &b, sizeof b);
+  HalfLanes a, b;
+  split_halves(a, b, v);
+  store_half(low, a);
+  store_half(high, b);
 }
 
 // std::abs and std::copysign lane by lane: the sign bit alone, so the same bits for every input.

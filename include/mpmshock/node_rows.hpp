@@ -5,8 +5,9 @@
 //   3D  [x0 y0 z0 x1] [y1 z1 x2 y2] [z2 x3 y3 z3]
 // and a column weight repeats in the same pattern (2D [w0 w0 w1 w1] [w2 w2 w3 w3]). A scalar field
 // (mass) is one vector [m0 m1 m2 m3]. A row whose columns wrap round the periodic x boundary is not
-// consecutive: its nodes are loaded and stored one by one (in 2D, a node's pair as one half of a
-// vector) into the same lanes, so every point computes the same numbers whichever way. Each lane computes a node's weights as for_each_node
+// consecutive: its nodes are loaded and stored one by one (the components of a node that share a
+// vector's half as that half) into the same lanes, so every point computes the same numbers
+// whichever way. Each lane computes a node's weights as for_each_node
 // does (shape.hpp), so a scatter adds to each node what the scalar loop added, in the same order of
 // points; a gather's sum over the stencil is grouped by lanes, which moves it at round-off from the
 // scalar loop's. Both stay bitwise independent of thread and rank counts.
@@ -83,9 +84,16 @@ template <int D>
   }
   if constexpr (D == 2) {  // a vector is two whole nodes
     for (int k = 0; k < 2; ++k) load_halves(out.v[k], row[column[2 * k]].c, row[column[2 * k + 1]].c);
-  } else {
-    auto at = [&](int k, int l) { return row[column[node_of<D>(k, l)]].c[component_of<D>(k, l)]; };
-    for (int k = 0; k < D; ++k) out.v[k] = Lanes{at(k, 0), at(k, 1), at(k, 2), at(k, 3)};
+  } else {  // [x0 y0 | z0 x1] [y1 z1 | x2 y2] [z2 x3 | y3 z3]: pairs that lie together load as halves
+    const double *n0 = row[column[0]].c, *n1 = row[column[1]].c, *n2 = row[column[2]].c, *n3 = row[column[3]].c;
+    HalfLanes x0y0, y1z1, x2y2, y3z3;
+    load_half(x0y0, n0);
+    load_half(y1z1, n1 + 1);
+    load_half(x2y2, n2);
+    load_half(y3z3, n3 + 1);
+    join_halves(out.v[0], x0y0, HalfLanes{n0[2], n1[0]});
+    join_halves(out.v[1], y1z1, x2y2);
+    join_halves(out.v[2], HalfLanes{n2[2], n3[0]}, y3z3);
   }
 }
 template <int D>
@@ -98,8 +106,17 @@ template <int D>
   if constexpr (D == 2) {
     for (int k = 0; k < 2; ++k) store_halves(row[column[2 * k]].c, row[column[2 * k + 1]].c, v.v[k]);
   } else {
-    for (int k = 0; k < D; ++k)
-      for (int l = 0; l < 4; ++l) row[column[node_of<D>(k, l)]].c[component_of<D>(k, l)] = v.v[k][l];
+    double *n0 = row[column[0]].c, *n1 = row[column[1]].c, *n2 = row[column[2]].c, *n3 = row[column[3]].c;
+    HalfLanes x0y0, z0x1, z2x3, y3z3;
+    split_halves(x0y0, z0x1, v.v[0]);
+    store_halves(n1 + 1, n2, v.v[1]);
+    split_halves(z2x3, y3z3, v.v[2]);
+    store_half(n0, x0y0);
+    store_half(n3 + 1, y3z3);
+    n0[2] = z0x1[0];
+    n1[0] = z0x1[1];
+    n2[2] = z2x3[0];
+    n3[0] = z2x3[1];
   }
 }
 // ... and of a scalar field, one node per lane.
