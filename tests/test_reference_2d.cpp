@@ -25,9 +25,10 @@
 // field sums by at most 1.2e-12 relative, the other three bitwise unchanged; written on a build
 // with AVX-512, where the file before was written without it), and when every pass began to read
 // the stencils of one pass before P2G (2026-12-06, issue 32: compute_stencils, the domain B-spline's
-// weights four points at a time; P2G no longer computes its weights inline, so FMA contraction
-// meets loaded weights in every case: point fields moved by at most 7e-15 relative in their sums,
-// the step's scratch `work` by 2.4e-12 and the clock's time by 4.8e-13).
+// weights four points at a time, and P2G reading its weights instead of computing them inline):
+// the "default", "no_smoothing" and "paper_cells" cases moved (point fields by at most 7e-15
+// relative in their sums, the step's scratch `work` by 2.4e-12, the clock's time by 4.8e-13), the
+// "bspline2" and "every_effect" cases bitwise unchanged.
 //
 // Bitwise where that is meaningful: floating-point results depend on the compiler and on the
 // instructions it may use (FMA contraction under -march=native), so the reference records the build

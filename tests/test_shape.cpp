@@ -2,8 +2,9 @@
 // matching finite differences, and periodic wrap at the seam, for every shape type; and the
 // quadrature of a uniformly compressed lattice of points: sum_p V_p grad N_i(x_p) = 0 at every
 // interior node for any offset from the grid where the points' domains tile the material (gimp,
-// bspline2_domain), which bspline2 at points does not give; and the domain B-spline's stencils
-// computed four points at a time equal to the bytes those computed one at a time.
+// bspline2_domain), which bspline2 at points does not give; the domain B-spline's weights against
+// its integral written out piece by piece, and its stencils computed four points at a time equal to
+// the bytes of those computed one at a time, in 2D and 3D.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -79,6 +80,45 @@ double compressed_lattice_error(const GridGeometry<2>& g, double J) {
     for (int r = 6; r < g.ny - 6; ++r) worst = std::max(worst, std::abs(sum[static_cast<std::size_t>(r)]));
   }
   return worst;
+}
+
+// The domain B-spline written out piece by piece, independently of shape.hpp's form: the quadratic
+// B-spline B and its integral M from -3/2, N(r) = (M(r + lp) - M(r - lp)) / (2 lp) and
+// dN/dr = (B(r + lp) - B(r - lp)) / (2 lp), r the point's distance from the node in cells.
+double reference_B(double s) {
+  const double a = std::abs(s);
+  return a < 0.5 ? 0.75 - s * s : (a < 1.5 ? 0.5 * (1.5 - a) * (1.5 - a) : 0.0);
+}
+double reference_M(double s) {
+  if (s <= -1.5) return 0.0;
+  if (s <= -0.5) return std::pow(s + 1.5, 3) / 6.0;
+  if (s <= 0.5) return 1.0 / 6.0 + 0.75 * (s + 0.5) - (s * s * s + 0.125) / 3.0;
+  if (s < 1.5) return 1.0 - std::pow(1.5 - s, 3) / 6.0;
+  return 1.0;
+}
+
+// The stencils of four points at a time against each point's alone, byte for byte, in D dimensions.
+template <int D>
+void check_four_at_once(const GridGeometry<D>& g, const std::vector<Vec<D>>& xs, const std::vector<Mat<D>>& Fs) {
+  using Domain = QuadraticBSplineDomainShape;
+  for (std::size_t k = 0; k + 4 <= xs.size(); k += 4) {
+    const Vec<D>* x[4] = {&xs[k], &xs[k + 1], &xs[k + 2], &xs[k + 3]};
+    const Mat<D>* F[4] = {&Fs[k], &Fs[k + 1], &Fs[k + 2], &Fs[k + 3]};
+    Stencil<4, D> four[4];
+    Stencil<4, D>* out[4] = {&four[0], &four[1], &four[2], &four[3]};
+    Domain::at_four(x, F, g, out);
+    for (int l = 0; l < 4; ++l) {
+      const Stencil<4, D> alone = Domain::at(*x[l], g, *F[l]);
+      bool same = std::equal(alone.column, alone.column + 4, four[l].column) && alone.row0 == four[l].row0;
+      if constexpr (D == 3) same = same && std::equal(alone.layer, alone.layer + 4, four[l].layer);
+      for (int axis = 0; axis < D; ++axis)
+        for (int a = 0; a < 4; ++a) {
+          same = same && std::memcmp(&alone.w[axis][a], &four[l].w[axis][a], sizeof(double)) == 0;
+          same = same && std::memcmp(&alone.g[axis][a], &four[l].g[axis][a], sizeof(double)) == 0;
+        }
+      CHECK(same);
+    }
+  }
 }
 
 int main() {
@@ -158,28 +198,60 @@ int main() {
     xs[2] = Vec<2>{{g.width() * (1 - 1e-9), 0.0}};
     xs[5] = Vec<2>{{std::nan(""), 0.0}};
     xs[6] = Vec<2>{{0.0, 1e9}};
+    check_four_at_once<2>(g, xs, Fs);
     using Domain = QuadraticBSplineDomainShape;
-    for (std::size_t k = 0; k + 4 <= xs.size(); k += 4) {
-      const Vec<2>* x[4] = {&xs[k], &xs[k + 1], &xs[k + 2], &xs[k + 3]};
-      const Mat<2>* F[4] = {&Fs[k], &Fs[k + 1], &Fs[k + 2], &Fs[k + 3]};
-      Stencil<4, 2> four[4];
-      Stencil<4, 2>* out[4] = {&four[0], &four[1], &four[2], &four[3]};
-      Domain::at_four(x, F, g, out);
-      for (int l = 0; l < 4; ++l) {
-        const Stencil<4, 2> alone = Domain::at(*x[l], g, *F[l]);
-        CHECK(std::equal(alone.column, alone.column + 4, four[l].column) && alone.row0 == four[l].row0);
-        bool same = true;
-        for (int axis = 0; axis < 2; ++axis)
-          for (int a = 0; a < 4; ++a) {
-            same = same && std::memcmp(&alone.w[axis][a], &four[l].w[axis][a], sizeof(double)) == 0;
-            same = same && std::memcmp(&alone.g[axis][a], &four[l].g[axis][a], sizeof(double)) == 0;
-          }
-        CHECK(same);
-      }
-    }
     // ... and the first row it gives is the one the bins and the left-grid check use.
     for (std::size_t k = 0; k < xs.size(); ++k)
       if (k != 5) CHECK(Domain::at(xs[k], g, Fs[k]).row0 == Domain::first_row(xs[k][1], g));
+    // The weights and derivatives against the piecewise reference above, on both axes.
+    double worst_w = 0.0, worst_g = 0.0;
+    for (std::size_t k = 0; k < xs.size(); ++k) {
+      if (k == 5 || k == 6) continue;  // the NaN and the far point
+      const auto st = Domain::at(xs[k], g, Fs[k]);
+      for (int axis = 0; axis < 2; ++axis) {
+        const double u = (axis == 0 ? xs[k][0] : xs[k][1] - g.y_min) * g.inv_h;
+        const double lp = std::clamp(g.lp * std::abs(Fs[k](axis, axis)), 1e-3, 0.5);
+        const int base = static_cast<int>(std::floor(u)) - 1;
+        CHECK((axis == 0 ? (st.column[0] - base) % g.nx : st.row0 - base) == 0);
+        for (int a = 0; a < 4; ++a) {
+          const double r = u - (base + a);
+          const double w = (reference_M(r + lp) - reference_M(r - lp)) / (2.0 * lp);
+          const double dw = (reference_B(r + lp) - reference_B(r - lp)) / (2.0 * lp);
+          worst_w = std::max(worst_w, std::abs(st.w[axis][a] - w));
+          worst_g = std::max(worst_g, std::abs(st.g[axis][a] * g.h - dw));
+        }
+      }
+    }
+    std::printf("bspline2_domain against the piecewise reference: weights within %.2g, gradients within %.2g (cells)\n",
+                worst_w, worst_g);
+    CHECK(worst_w < 2e-14);
+    CHECK(worst_g < 2e-14);
+  }
+  {
+    // The same in 3D, where z is periodic too (layers wrapped at both seams).
+    GridGeometry<3> g3;
+    g3.nx = 5;
+    g3.ny = 12;
+    g3.nz = 6;
+    g3.h = 2.5e-6;
+    g3.inv_h = 1.0 / g3.h;
+    g3.y_min = -1.0e-5;
+    g3.lp = 0.25;
+    std::uniform_real_distribution<double> ux(0.0, g3.width()), uy(g3.y_min + 3 * g3.h, g3.y_max() - 3 * g3.h),
+        uz(0.0, g3.depth()), uf(0.3, 1.6);
+    std::vector<Vec<3>> xs;
+    std::vector<Mat<3>> Fs;
+    for (int k = 0; k < 400; ++k) {
+      Mat<3> F{};
+      for (int d = 0; d < 3; ++d) F(d, d) = uf(rng);
+      xs.push_back(Vec<3>{{ux(rng), uy(rng), uz(rng)}});
+      Fs.push_back(F);
+    }
+    xs[1] = Vec<3>{{1e-9 * g3.h, 0.0, g3.depth() * (1 - 1e-9)}};
+    xs[2] = Vec<3>{{g3.width() * (1 - 1e-9), 0.0, 1e-9 * g3.h}};
+    check_four_at_once<3>(g3, xs, Fs);
+    const auto seam = QuadraticBSplineDomainShape::at(xs[1], g3, Fs[1]);
+    CHECK(seam.column[0] == g3.nx - 1 && seam.column[1] == 0 && seam.layer[0] == g3.nz - 2 && seam.layer[2] == 0);
   }
 
   // Periodic seam: a point just left of x = width touches column 0 as its right neighbour.

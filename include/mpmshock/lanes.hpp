@@ -1,7 +1,8 @@
 // Four doubles in the lanes of one vector register (AVX2 width; two SSE2 halves on a baseline
-// x86-64 build), with GCC's vector extensions: arithmetic, comparisons and ?: act lane by lane, so a
-// formula written once computes four independent values, each exactly as it would alone. Used for a
-// stencil row's four nodes (node_rows.hpp) and four points' stencil weights (shape.hpp).
+// x86-64 build), with the GCC/Clang vector extensions (g++ 12 or newer for __builtin_shufflevector;
+// CMakeLists.txt checks): arithmetic, comparisons and ?: act lane by lane, so a formula written once
+// computes four independent values, each exactly as it would alone. Used for a stencil row's four
+// nodes (node_rows.hpp) and four points' stencil weights (shape.hpp).
 //
 // Without AVX each vector is two SSE2 halves; helpers take and give vectors by reference, since by
 // value their ABI would change with AVX (GCC's -Wpsabi note).
@@ -68,22 +69,20 @@ typedef double HalfLanes __attribute__((vector_size(16)));
 
 // A 4 x 4 transpose: afterwards v[l] holds lane l of each of the four vectors it held (moves only).
 [[gnu::always_inline]] inline void transpose_lanes(Lanes (&v)[4]) {
-  const LaneBits low{0, 4, 2, 6}, high{1, 5, 3, 7}, front{0, 1, 4, 5}, back{2, 3, 6, 7};
-  const Lanes t0 = __builtin_shuffle(v[0], v[1], low), t1 = __builtin_shuffle(v[0], v[1], high);
-  const Lanes t2 = __builtin_shuffle(v[2], v[3], low), t3 = __builtin_shuffle(v[2], v[3], high);
-  v[0] = __builtin_shuffle(t0, t2, front);
-  v[1] = __builtin_shuffle(t1, t3, front);
-  v[2] = __builtin_shuffle(t0, t2, back);
-  v[3] = __builtin_shuffle(t1, t3, back);
+  const Lanes t0 = __builtin_shufflevector(v[0], v[1], 0, 4, 2, 6), t1 = __builtin_shufflevector(v[0], v[1], 1, 5, 3, 7);
+  const Lanes t2 = __builtin_shufflevector(v[2], v[3], 0, 4, 2, 6), t3 = __builtin_shufflevector(v[2], v[3], 1, 5, 3, 7);
+  v[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  v[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  v[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  v[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 [[gnu::always_inline]] inline void transpose_lanes(LaneInts (&v)[4]) {
-  const LaneInts low{0, 4, 1, 5}, high{2, 6, 3, 7}, front{0, 1, 4, 5}, back{2, 3, 6, 7};
-  const LaneInts t0 = __builtin_shuffle(v[0], v[1], low), t1 = __builtin_shuffle(v[0], v[1], high);
-  const LaneInts t2 = __builtin_shuffle(v[2], v[3], low), t3 = __builtin_shuffle(v[2], v[3], high);
-  v[0] = __builtin_shuffle(t0, t2, front);
-  v[1] = __builtin_shuffle(t0, t2, back);
-  v[2] = __builtin_shuffle(t1, t3, front);
-  v[3] = __builtin_shuffle(t1, t3, back);
+  const LaneInts t0 = __builtin_shufflevector(v[0], v[1], 0, 4, 1, 5), t1 = __builtin_shufflevector(v[0], v[1], 2, 6, 3, 7);
+  const LaneInts t2 = __builtin_shufflevector(v[2], v[3], 0, 4, 1, 5), t3 = __builtin_shufflevector(v[2], v[3], 2, 6, 3, 7);
+  v[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  v[1] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  v[2] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  v[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 
 }  // namespace mpmshock

@@ -42,8 +42,10 @@ struct Stencil {
 };
 
 // The stencils of a step's points, one per point by storage index: computed once at the step's start
-// (compute_stencils, transfer.hpp), and read by every pass of the step before the points move (P2G,
-// heat conduction, G2P, the velocity gradient), since a point's x and F do not change until then.
+// (compute_stencils, transfer.hpp) from the x and F the step starts from, and read by every pass of
+// the step: those before the points move (P2G, heat conduction, the heat flux, G2P, the velocity
+// gradient), and by design two after it, volumetric smoothing's rate and spall's neighbourhood,
+// which weigh the step's nodal sums with the weights the step began with.
 template <int D>
 struct StencilStore {
   std::vector<Stencil<2, D>> linear;     // bilinear (trilinear) cells
