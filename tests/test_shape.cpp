@@ -121,14 +121,23 @@ void check_four_at_once(const GridGeometry<D>& g, const std::vector<Vec<D>>& xs,
   }
 }
 
-int main() {
-  GridGeometry<2> g;
-  g.nx = 7;
+// The test grid: nx columns (and nz layers in 3D) of 2.5 um cells, 12 node rows from y = -10 um,
+// points of half a cell.
+template <int D>
+GridGeometry<D> test_grid(int nx, int nz = 1) {
+  GridGeometry<D> g;
+  g.nx = nx;
   g.ny = 12;
+  g.nz = nz;
   g.h = 2.5e-6;
   g.inv_h = 1.0 / g.h;
   g.y_min = -1.0e-5;
   g.lp = 0.25;
+  return g;
+}
+
+int main() {
+  const GridGeometry<2> g = test_grid<2>(7);
   std::mt19937_64 rng(42);
   check_shape<BilinearShape>(g, rng);
   check_shape<GimpShape>(g, rng);
@@ -229,14 +238,7 @@ int main() {
   }
   {
     // The same in 3D, where z is periodic too (layers wrapped at both seams).
-    GridGeometry<3> g3;
-    g3.nx = 5;
-    g3.ny = 12;
-    g3.nz = 6;
-    g3.h = 2.5e-6;
-    g3.inv_h = 1.0 / g3.h;
-    g3.y_min = -1.0e-5;
-    g3.lp = 0.25;
+    const GridGeometry<3> g3 = test_grid<3>(5, 6);
     std::uniform_real_distribution<double> ux(0.0, g3.width()), uy(g3.y_min + 3 * g3.h, g3.y_max() - 3 * g3.h),
         uz(0.0, g3.depth()), uf(0.3, 1.6);
     std::vector<Vec<3>> xs;

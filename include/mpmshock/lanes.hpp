@@ -67,21 +67,15 @@ typedef double HalfLanes __attribute__((vector_size(16)));
   out = truncated + __builtin_convertvector(rounded_up, LaneInts);
 }
 
-// A 4 x 4 transpose: afterwards v[l] holds lane l of each of the four vectors it held (moves only).
-[[gnu::always_inline]] inline void transpose_lanes(Lanes (&v)[4]) {
-  const Lanes t0 = __builtin_shufflevector(v[0], v[1], 0, 4, 2, 6), t1 = __builtin_shufflevector(v[0], v[1], 1, 5, 3, 7);
-  const Lanes t2 = __builtin_shufflevector(v[2], v[3], 0, 4, 2, 6), t3 = __builtin_shufflevector(v[2], v[3], 1, 5, 3, 7);
+// A 4 x 4 transpose of four 4-lane vectors (Lanes, LaneInts): afterwards v[l] holds lane l of each
+// of the four vectors it held (moves only).
+template <class V>
+[[gnu::always_inline]] inline void transpose_lanes(V (&v)[4]) {
+  const V t0 = __builtin_shufflevector(v[0], v[1], 0, 4, 2, 6), t1 = __builtin_shufflevector(v[0], v[1], 1, 5, 3, 7);
+  const V t2 = __builtin_shufflevector(v[2], v[3], 0, 4, 2, 6), t3 = __builtin_shufflevector(v[2], v[3], 1, 5, 3, 7);
   v[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
   v[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
   v[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-  v[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
-}
-[[gnu::always_inline]] inline void transpose_lanes(LaneInts (&v)[4]) {
-  const LaneInts t0 = __builtin_shufflevector(v[0], v[1], 0, 4, 1, 5), t1 = __builtin_shufflevector(v[0], v[1], 2, 6, 3, 7);
-  const LaneInts t2 = __builtin_shufflevector(v[2], v[3], 0, 4, 1, 5), t3 = __builtin_shufflevector(v[2], v[3], 2, 6, 3, 7);
-  v[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
-  v[1] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-  v[2] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
   v[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
 }
 

@@ -7,10 +7,10 @@
 // (mass) is one vector [m0 m1 m2 m3]. A row whose columns wrap round the periodic x boundary is not
 // consecutive: its nodes are loaded and stored one by one (the components of a node that share a
 // vector's half as that half) into the same lanes, so every point computes the same numbers
-// whichever way. Each lane computes a node's weights as for_each_node
-// does (shape.hpp), so a scatter adds to each node what the scalar loop added, in the same order of
-// points; a gather's sum over the stencil is grouped by lanes, which moves it at round-off from the
-// scalar loop's. Both stay bitwise independent of thread and rank counts.
+// whichever way. Each lane computes a node's weights as for_each_node does (shape.hpp), so a
+// scatter adds to each node what the scalar loop added, in the same order of points; a gather's sum
+// over the stencil is grouped by lanes, which moves it at round-off from the scalar loop's. Both
+// stay bitwise independent of thread and rank counts.
 #pragma once
 
 #include <cstddef>

@@ -43,7 +43,7 @@ inline Mat<D> cauchy_stress(const Particles<D>& pts, std::size_t p) {
 }
 
 // The stencil of every point of `range` for the step (its nodes, 1D weights and derivatives: the
-// N_ip and grad N_ip of every pass until the points move), four points at a time (Shape::at_four).
+// N_ip and grad N_ip every pass of the step reads, shape.hpp), four points at a time (Shape::at_four).
 // The last group repeats the range's last point in its spare lanes, which are not kept.
 template <int D, class Shape>
 void compute_stencils(const Particles<D>& pts, PointRange range, const GridGeometry<D>& geo, StencilStore<D>& store) {
