@@ -13,6 +13,7 @@
 #include "mpmshock/comm.hpp"
 
 #include "mpmshock/hdf5_io.hpp"
+#include "mpmshock/openmp_wait.hpp"
 #include "mpmshock/provenance.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/run_directory.hpp"
@@ -203,6 +204,7 @@ int run(const Args& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mpmshock::prefer_short_waits(argv);  // may start this program again, before anything else: openmp_wait.hpp
   mpmshock::Comm::init(&argc, &argv);
   mpmshock::h5::prepare_library();
   const Args args = parse_args(argc, argv);

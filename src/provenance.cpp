@@ -1,5 +1,7 @@
 #include "mpmshock/provenance.hpp"
 
+#include "mpmshock/openmp_wait.hpp"
+
 #include <unistd.h>
 
 #include <ctime>
@@ -28,6 +30,7 @@ Invocation& the_invocation() {
     std::error_code ec;
     i.working_directory = std::filesystem::current_path(ec).string();
     i.started = utc_now();
+    i.openmp_wait = openmp_wait();
     return i;
   }();
   return inv;

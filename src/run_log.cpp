@@ -48,9 +48,10 @@ void open_run_log(const std::filesystem::path& dir, bool continued) {
   const Invocation& inv = invocation();
   std::fprintf(log.file, "%s# mpmshock %s%s, commit %s\n# built by %s with %s (%s)\n", continued ? "\n" : "",
                b.version, Comm::built_with_mpi() ? " (with MPI)" : "", b.commit, b.compiler, b.flags, b.build_type);
-  std::fprintf(log.file, "# %s %s on %s in %s, %d rank%s\n# command: %s\n", continued ? "restarted" : "started",
-               inv.started.c_str(), inv.host.c_str(), inv.working_directory.c_str(), inv.ranks,
-               inv.ranks == 1 ? "" : "s", inv.command_line.c_str());
+  std::fprintf(log.file, "# %s %s on %s in %s, %d rank%s\n# command: %s\n# OpenMP waits: %s\n",
+               continued ? "restarted" : "started", inv.started.c_str(), inv.host.c_str(),
+               inv.working_directory.c_str(), inv.ranks, inv.ranks == 1 ? "" : "s", inv.command_line.c_str(),
+               inv.openmp_wait.c_str());
   std::fputs(log.before.c_str(), log.file);
   std::fflush(log.file);
   log.before.clear();

@@ -28,6 +28,7 @@ Json provenance_json() {
               {"command_line", inv.command_line},
               {"working_directory", inv.working_directory},
               {"host", inv.host},
+              {"openmp_wait", inv.openmp_wait},
               {"started", inv.started},
               {"written", utc_now()}};
 }
