@@ -13,7 +13,7 @@
 #include "mpmshock/comm.hpp"
 
 #include "mpmshock/hdf5_io.hpp"
-#include "mpmshock/openmp_wait.hpp"
+#include "openmp_wait.hpp"
 #include "mpmshock/provenance.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/run_directory.hpp"

@@ -1,6 +1,6 @@
 #include "mpmshock/provenance.hpp"
 
-#include "mpmshock/openmp_wait.hpp"
+#include "openmp_wait.hpp"
 
 #include <unistd.h>
 

@@ -130,26 +130,40 @@ if mount -t tmpfs -o size=3M tmpfs small 2>/dev/null; then
 else
   echo "note: cannot mount a tmpfs here; the full-file-system check ran with a file-size limit only"
 fi
-# OpenMP's waits (openmp_wait.hpp): with neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT set and two
+# OpenMP's waits (src/openmp_wait.hpp): with neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT set and two
 # threads, mpmshock starts itself again with a short spin count, keeping its arguments (a bad scene is
-# still reported, with its exit code) and recording the setting; a user's own setting and one-thread
-# runs are left as they are.
-waits() {  # waits NAME EXPECTED-LOG-LINE ENV... -- ARGS...
+# still reported, with its exit code), and records what libgomp read as it loaded (the environment on
+# entry: a run that was not started again says "libgomp's default"); a user's own setting, a marker
+# inherited from another process and one-thread runs are left as they are, and so is a program the
+# dynamic loader was asked to start (/proc/self/exe is then the loader).
+unset_waits=(-u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u MPMSHOCK_SET_GOMP_SPINCOUNT)
+waits() {  # waits NAME EXPECTED-LOG-LINE ENV... -- COMMAND...
   local name=$1 line=$2 envs=()
   shift 2
   while [ "$1" != "--" ]; do envs+=("$1"); shift; done
   shift
-  env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "${envs[@]}" "$bin" tiny.scene --quiet --set end_time=5ns \
-    --set output_dir="$name" "$@" >"$name.out" 2>&1 || fail "waits $name: exit $?: $(cat "$name.out")"
+  timeout 120 env "${unset_waits[@]}" "${envs[@]}" "$@" tiny.scene --quiet --set end_time=5ns \
+    --set output_dir="$name" >"$name.out" 2>&1 || fail "waits $name: exit $?: $(cat "$name.out")"
   grep -qxF "# OpenMP waits: $line" "$name/log.txt" || fail "waits $name: log.txt lacks '$line': $(grep OpenMP "$name/log.txt")"
   grep -qF "\"openmp_wait\": \"$line\"" "$name/summary.json" || fail "waits $name: summary.json lacks '$line'"
 }
-waits wait_set "GOMP_SPINCOUNT=3000 (set by mpmshock)" -- --threads 2
-waits wait_user "GOMP_SPINCOUNT=5000 (from the environment)" GOMP_SPINCOUNT=5000 -- --threads 2
-waits wait_policy "OMP_WAIT_POLICY=passive (from the environment)" OMP_WAIT_POLICY=passive -- --threads 2
-waits wait_one "libgomp's default" -- --threads 1
-waits wait_one_env "libgomp's default" OMP_NUM_THREADS=1 --
-out=$(env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$bin" typo.scene --threads 2 2>&1)
+waits wait_set "GOMP_SPINCOUNT=3000 (set by mpmshock)" -- "$bin" --threads 2
+waits wait_last "GOMP_SPINCOUNT=3000 (set by mpmshock)" -- "$bin" --threads 1 --threads 2
+waits wait_user "GOMP_SPINCOUNT=5000 (from the environment)" GOMP_SPINCOUNT=5000 -- "$bin" --threads 2
+waits wait_policy "OMP_WAIT_POLICY=passive (from the environment)" OMP_WAIT_POLICY=passive -- "$bin" --threads 2
+waits wait_both "OMP_WAIT_POLICY=active, GOMP_SPINCOUNT=5000 (from the environment)" OMP_WAIT_POLICY=active \
+  GOMP_SPINCOUNT=5000 -- "$bin" --threads 2
+waits wait_inherited "GOMP_SPINCOUNT=5000 (from the environment)" MPMSHOCK_SET_GOMP_SPINCOUNT=1 GOMP_SPINCOUNT=5000 -- \
+  "$bin" --threads 2
+waits wait_one "libgomp's default" -- "$bin" --threads 1
+waits wait_one_env "libgomp's default" OMP_NUM_THREADS=1 -- "$bin"
+loader=$(readelf -l "$bin" 2>/dev/null | sed -n 's/.*Requesting program interpreter: \(.*\)]$/\1/p')
+if [ -x "$loader" ]; then
+  waits wait_loader "libgomp's default" -- "$loader" "$bin" --threads 2
+else
+  echo "note: no program interpreter found for $bin; the loader-started run was not checked"
+fi
+out=$(timeout 120 env "${unset_waits[@]}" "$bin" typo.scene --threads 2 2>&1)
 rc=$?
 [ "$rc" -eq 2 ] && echo "$out" | grep -q "typo.scene:2: key 'porosty'" ||
   fail "a bad scene, started again for the spin count: exit $rc, output: $out"

@@ -68,9 +68,9 @@ compare whole "$data/tiny_porous.scene" --set shape_function=bilinear --set flye
   --set paper_temperature=on "${probes[@]}"
 compare porous3d "$data/tiny_porous_3d.scene" --set probe.top=surface
 # Ranks of 2 threads with neither OpenMP wait variable set: each rank starts itself again with a
-# short spin count before MPI starts (openmp_wait.hpp), and the run goes on as any other.
+# short spin count before MPI starts (src/openmp_wait.hpp), and the run goes on as any other.
 rm -rf waits
-env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_NUM_THREADS=2 "${mpirun[@]}" -np 2 "$bin" "$data/tiny_porous.scene" \
+env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u MPMSHOCK_SET_GOMP_SPINCOUNT OMP_NUM_THREADS=2 "${mpirun[@]}" -np 2 "$bin" "$data/tiny_porous.scene" \
   --quiet --set end_time=5ns --set output_dir=waits >waits.out 2>&1 || fail "2 ranks x 2 threads, default waits: exit $?: $(tail -3 waits.out)"
 grep -q '^# OpenMP waits: GOMP_SPINCOUNT=3000 (set by mpmshock)$' waits/log.txt ||
   fail "2 ranks x 2 threads: log.txt does not record the spin count mpmshock set: $(grep OpenMP waits/log.txt)"

@@ -22,7 +22,7 @@ struct Invocation {
   std::string host;
   std::string working_directory;
   int ranks = 1;
-  std::string openmp_wait;        // how waiting threads wait (openmp_wait.hpp)
+  std::string openmp_wait;        // how waiting threads wait (src/openmp_wait.hpp)
 };
 
 // main() records the command line once; until then invocation() has only host, time and directory.

@@ -4,7 +4,7 @@
 // sleep. On a machine where another program uses a core, the thread that still has work is then
 // often the one without a core, and a step with 2 threads measured 2.2x slower than with 1
 // (docs/method.md, "Threads on a busy machine"). main() shortens the spin where the user has not
-// chosen one (openmp_wait.hpp), which takes away most of that; the tuner chooses how many threads.
+// chosen one (src/openmp_wait.hpp), which takes away most of that; the tuner chooses how many threads.
 //
 // The tuner runs the steps at its current thread count and, every `period` steps, tries a few
 // steps at another candidate count (half or double, within [1, max]). If those are faster by a
