@@ -10,6 +10,8 @@
 // The `threads` mode measures the default scene and a 640 k-point solid scene on 1 thread, on all
 // threads, and on all threads with the thread tuner (how mpmshock runs), each on an idle machine
 // and with a busy process beside it (a loop on one core, started and stopped by the benchmark).
+// Like mpmshock, the benchmark starts itself again with a short OpenMP spin unless the user set a
+// wait policy (src/openmp_wait.hpp), and prints which setting it ran with.
 //
 // The `speed` mode (issue 11) measures the speed scene, configs/speed.scene (solid plates, 5 um
 // cells, 2 x 2 points per cell, +-1000 m/s), at 50 k, 640 k, 2.5 M and 10 M points (the width
@@ -40,6 +42,7 @@
 #include "mpmshock/simulation.hpp"
 #include "mpmshock/temperature.hpp"
 #include "mpmshock/thread_tuner.hpp"
+#include "openmp_wait.hpp"
 
 using namespace mpmshock;
 using WallClock = std::chrono::steady_clock;
@@ -142,8 +145,9 @@ int threads_mode(int repeats) {
        "end_time = 250 ns\n",
        5, 120},
   };
-  std::printf("mpmshock_bench threads: point-steps per second (millions), best of %d, %d threads at most\n\n",
-              repeats, all);
+  std::printf("mpmshock_bench threads: point-steps per second (millions), best of %d, %d threads at most\n"
+              "OpenMP waits: %s\n\n",
+              repeats, all, mpmshock::openmp_wait().c_str());
   std::printf("| scene | machine | 1 thread | %d threads, fixed | %d threads, tuned (mpmshock) |\n", all, all);
   std::printf("|---|---|---|---|---|\n");
   for (const Case& c : cases) {
@@ -409,6 +413,7 @@ int speed_mode(int repeats, double max_points, int only_dimension) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mpmshock::prefer_short_waits(argv);  // may start the benchmark again: src/openmp_wait.hpp
   if (argc >= 2 && !std::strcmp(argv[1], "threads")) {
     const int repeats = (argc >= 4 && !std::strcmp(argv[2], "--repeats")) ? std::atoi(argv[3]) : 2;
     return threads_mode(std::max(1, repeats));
