@@ -1,8 +1,8 @@
 // How a thread that waits at one of OpenMP's barriers waits. GCC's libgomp makes it spin for about
 // 3 ms before it sleeps. Where another program holds a core, the spinning thread keeps the core that
 // the thread with work left needs, and every barrier waits for the scheduler; a spin of about 30 us
-// keeps the idle speed and loses most of that (docs/method.md, "Threads on a busy machine", has the
-// measurements).
+// loses most of that for about 1 % of the idle speed (docs/method.md, "Threads on a busy machine",
+// has the measurements).
 //
 // libgomp reads OMP_WAIT_POLICY and GOMP_SPINCOUNT once, as it is loaded, before main() runs; a
 // program cannot change them for itself. So main() calls prefer_short_waits() first, before MPI
