@@ -13,7 +13,6 @@
 #include "mpmshock/comm.hpp"
 
 #include "mpmshock/hdf5_io.hpp"
-#include "openmp_wait.hpp"
 #include "mpmshock/provenance.hpp"
 #include "mpmshock/run.hpp"
 #include "mpmshock/run_directory.hpp"
@@ -21,6 +20,7 @@
 #include "mpmshock/scene.hpp"
 #include "mpmshock/signals.hpp"
 #include "mpmshock/version.hpp"
+#include "openmp_wait.hpp"
 
 namespace {
 

@@ -102,6 +102,9 @@ void prefer_short_waits(char** argv) {
   ::unsetenv(kMarker);
 }
 
-std::string openmp_wait() { return found_on_entry().value_or(described_now()); }
+std::string openmp_wait() {
+  const std::optional<std::string>& entry = found_on_entry();
+  return entry ? *entry : described_now();
+}
 
 }  // namespace mpmshock

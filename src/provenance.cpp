@@ -1,12 +1,12 @@
 #include "mpmshock/provenance.hpp"
 
-#include "openmp_wait.hpp"
-
 #include <unistd.h>
 
 #include <ctime>
 #include <filesystem>
 #include <system_error>
+
+#include "openmp_wait.hpp"
 
 namespace mpmshock {
 
