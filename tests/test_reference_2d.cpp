@@ -28,7 +28,12 @@
 // weights four points at a time, and P2G reading its weights instead of computing them inline):
 // the "default", "no_smoothing" and "paper_cells" cases moved (point fields by at most 7e-15
 // relative in their sums, the step's scratch `work` by 2.4e-12, the clock's time by 4.8e-13), the
-// "bspline2" and "every_effect" cases bitwise unchanged.
+// "bspline2" and "every_effect" cases bitwise unchanged, and when the point update began to take
+// four points at a time (2026-12-06, issue 32: constitutive.hpp's step_lanes, the same formulas
+// with FMA contraction chosen apart): the "default", "bspline2" and "paper_cells" cases moved (field
+// sums by at most 3e-15 relative, the step's scratch `work` by 6e-13, the clock's time by 1e-12),
+// "no_smoothing" in its clock alone, "every_effect" (spall and softening, still point by point)
+// bitwise unchanged.
 //
 // Bitwise where that is meaningful: floating-point results depend on the compiler and on the
 // instructions it may use (FMA contraction under -march=native), so the reference records the build

@@ -16,18 +16,18 @@ struct ArtificialViscosity {
   double quadratic;  // A2
 
   // The viscous pressure q. rho: current density, c: bulk sound speed, h: cell size, trD:
-  // volumetric strain rate.
-  double pressure(double rho, double c, double h, double trD) const {
-    if (trD >= 0.0) return 0.0;
-    const double rate = -trD;
-    return rho * h * rate * (linear * c + quadratic * h * rate);
+  // volumetric strain rate. T: a double or four points' Lanes (number.hpp).
+  template <class T>
+  T pressure(const T& rho, const T& c, double h, const T& trD) const {
+    const T rate = -trD;
+    return trD >= 0.0 ? T{} : rho * h * rate * (linear * c + quadratic * h * rate);
   }
 
   // The viscous part of the signal speed, Q = A1 c + A2 h |tr D|, for the time-step bound
   // dt <= h / (Q + sqrt(Q^2 + c^2)) of a viscous explicit scheme.
-  double signal(double c, double h, double trD) const {
-    if (trD >= 0.0) return 0.0;
-    return linear * c + quadratic * h * (-trD);
+  template <class T>
+  T signal(const T& c, double h, const T& trD) const {
+    return trD >= 0.0 ? T{} : linear * c + quadratic * h * (-trD);
   }
 };
 

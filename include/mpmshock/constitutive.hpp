@@ -11,38 +11,42 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "mpmshock/exact_sum.hpp"
 #include "mpmshock/model.hpp"
+#include "mpmshock/number.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 
 namespace mpmshock {
 
-template <int D>
+// T: a double, or four points in the lanes of Lanes (number.hpp), each computed as it would be alone.
+template <int D, class T = double>
 struct PointState {
-  Mat<D> L;     // in: the velocity gradient
-  double work;  // in: the work of the step's forces [J/kg]
-  Mat<D> F;
-  double E, P, q;
-  Deviator<D> s, alpha;
-  double eps_p;
-  double failure_J = 0.0;      // in/out with spall: 0 while intact, else the J it began to open at
-  double damage = 0.0;         // in/out with spall: 0 intact ... 1 separated (spall.hpp)
-  double E_stored = 0.0;       // in/out: the cold work stored in E [J/kg]
-  double plastic_heat = 0.0;   // in/out: the plastic work turned to heat [J/kg] (temperature_model = paper)
-  double work_mismatch = 0.0;  // out: work minus the trapezoid-rule work of the point's own deformation
+  Mat<D, T> L;  // in: the velocity gradient
+  T work;       // in: the work of the step's forces [J/kg]
+  Mat<D, T> F;
+  T E, P, q;
+  Deviator<D, T> s, alpha;
+  T eps_p;
+  T failure_J{};      // in/out with spall: 0 while intact, else the J it began to open at
+  T damage{};         // in/out with spall: 0 intact ... 1 separated (spall.hpp)
+  T E_stored{};       // in/out: the cold work stored in E [J/kg]
+  T plastic_heat{};   // in/out: the plastic work turned to heat [J/kg] (temperature_model = paper)
+  T work_mismatch{};  // out: work minus the trapezoid-rule work of the point's own deformation
   // in: the rate of volume change F follows, tr L (NaN) unless volumetric smoothing gives its own
   // (volumetric_smoothing.hpp); the deviatoric rate is always L's.
-  double volume_rate = std::numeric_limits<double>::quiet_NaN();
+  T volume_rate = constant<T>(std::numeric_limits<double>::quiet_NaN());
 };
 
 // The rate of volume change F follows: the smoothed one where there is one, else tr L.
-template <int D>
-inline double volume_rate_of(const PointState<D>& st) {
-  return std::isnan(st.volume_rate) ? trace(st.L) : st.volume_rate;
+template <int D, class T>
+inline T volume_rate_of(const PointState<D, T>& st) {
+  return st.volume_rate != st.volume_rate ? trace(st.L) : st.volume_rate;  // NaN: none
 }
 
 // The energy-consistency diagnostic of a point's step: the work it was given (the exact work of the
@@ -50,48 +54,54 @@ inline double volume_rate_of(const PointState<D>& st) {
 // -(1/2)((P + q)^n + (P + q)^{n+1}) dV + V^{n+1/2} (1/2)(s^n + s^{n+1}) : L dt, per unit mass.
 // Summed over points and steps (times m) it is the internal energy the points hold that their own
 // compression did not give them (conservation.csv, work_mismatch).
-template <int D>
-inline void own_work_mismatch(PointState<D>& st, double rho0, double J_before, double J, double pq_before,
-                              const Deviator<D>& s_before, double dt) {
-  double own = -0.5 * (pq_before + st.P + st.q) * (J - J_before) / rho0;
+template <int D, class T>
+inline void own_work_mismatch(PointState<D, T>& st, double rho0, const T& J_before, const T& J, const T& pq_before,
+                              const Deviator<D, T>& s_before, double dt) {
+  T own = -0.5 * (pq_before + st.P + st.q) * (J - J_before) / rho0;
   own += 0.25 * dt * (J_before + J) / rho0 * (contract(s_before, st.L) + contract(st.s, st.L));
   st.work_mismatch = st.work - own;
 }
 
-// One point, one step. Returns the point's signal speed (for the next time step), or a negative
-// number if the new state is not physical (J <= the EOS limit, or a non-finite result). Inlined
-// into the loop over points: as a call it costs 40 % more instructions per point.
+// One point, one step (or four in Lanes). Returns the point's signal speed (for the next time
+// step), or a negative number if the new state is not physical (J <= the EOS limit, or a
+// non-finite result). Inlined into the loop over points: as a call it costs 40 % more instructions
+// per point. A double returns at once from a state that is not physical; four lanes finish the
+// step in every lane (the run stops at such a state either way).
 // `taylor_quinney` is the share of plastic work that becomes heat; the rest goes to E_stored.
-template <int D, class Eos, class Strength, class Viscosity, class Failure = NoFailure>
-[[gnu::always_inline]] inline double update_point(PointState<D>& st, const Eos& eos, const Strength& strength,
-                                                  const Viscosity& viscosity, double h, double dt,
-                                                  [[maybe_unused]] const Failure& failure = {},
-                                                  [[maybe_unused]] double taylor_quinney = 1.0) {
-  const StrainRate<D> rate = strain_rate(st.L);
-  const double volume_rate = volume_rate_of(st);
-  const double volume_shift = (volume_rate - trace(st.L)) / D;  // 0 without smoothing
-  const double J_before = det(st.F), pq_before = st.P + st.q;
-  [[maybe_unused]] const Deviator<D> s_before = st.s;
+template <int D, class T, class Eos, class Strength, class Viscosity, class Failure = NoFailure>
+[[gnu::always_inline]] inline T update_point(PointState<D, T>& st, const Eos& eos, const Strength& strength,
+                                             const Viscosity& viscosity, double h, double dt,
+                                             [[maybe_unused]] const Failure& failure = {},
+                                             [[maybe_unused]] double taylor_quinney = 1.0) {
+  constexpr bool lanes = !std::is_same_v<T, double>;
+  static_assert(!lanes || !Failure::active, "spall is computed point by point");
+  const StrainRate<D, T> rate = strain_rate(st.L);
+  const T volume_rate = volume_rate_of(st);
+  const T volume_shift = (volume_rate - trace(st.L)) / static_cast<double>(D);  // 0 without smoothing
+  const T J_before = det(st.F), pq_before = st.P + st.q;
+  [[maybe_unused]] const Deviator<D, T> s_before = st.s;
 
   // Energy: the exact work of the step's nodal forces on the point (compression, plastic and
   // viscous work alike), which is what the points' kinetic energy lost.
   st.E += st.work;
 
   // Kinematics: F^{n+1} = (I + dt L) F^n, L with the volume rate's trace.
-  Mat<D> A;
+  Mat<D, T> A;
   for (int i = 0; i < D; ++i)
     for (int j = 0; j < D; ++j) A(i, j) = i == j ? 1.0 + dt * (st.L(i, j) + volume_shift) : dt * st.L(i, j);
   st.F = product(A, st.F);
-  const double J = det(st.F);
-  if (!(J > eos.limiting_compression())) return -1.0;
+  const T J = det(st.F);
+  const auto admitted = J > eos.limiting_compression();
+  if constexpr (!lanes)
+    if (!admitted) return -1.0;
   // A failed point's material keeps the volume it failed at while the space around it opens.
-  double J_material = J;
+  T J_material = J;
   if constexpr (Failure::active)
     if (st.failure_J > 0.0) J_material = std::min(J, st.failure_J);
-  const double rho = eos.rho0() / J_material;
+  const T rho = eos.rho0() / J_material;
 
   if constexpr (Strength::has_stress) {
-    const double plastic_work = strength.update(st.s, st.alpha, st.eps_p, rate, dt, J_material, st.E - st.E_stored, st.P);
+    const T plastic_work = strength.update(st.s, st.alpha, st.eps_p, rate, dt, J_material, st.E - st.E_stored, st.P);
     st.E_stored += (1.0 - taylor_quinney) * plastic_work / rho;
     st.plastic_heat += taylor_quinney * plastic_work / rho;
   }
@@ -99,7 +109,9 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
   // Pressure from the new volume and energy; artificial viscosity from this step's compression rate.
   const auto eos_state = eos.state(J_material, st.E);
   st.P = eos_state.pressure;
-  if (!std::isfinite(st.E) || !std::isfinite(st.P)) return -1.0;
+  const auto physical = admitted && finite(st.E) && finite(st.P);
+  if constexpr (!lanes)
+    if (!physical) return -1.0;
   if constexpr (Failure::active) {
     // Opens when its tension exceeds the strength: no shear from then on, its tension held at the
     // strength until it has separated, none after.
@@ -111,21 +123,24 @@ template <int D, class Eos, class Strength, class Viscosity, class Failure = NoF
       st.alpha = {};
     }
   }
-  const double c2_bulk = std::max(eos_state.sound_speed_squared, 0.0);
-  double c2 = c2_bulk;  // longitudinal: bulk plus shear
+  const T c2_bulk = maximum(eos_state.sound_speed_squared, T{});
+  T c2 = c2_bulk;  // longitudinal: bulk plus shear
   if constexpr (Strength::has_stress) c2 += (4.0 / 3.0) * strength.shear_modulus / rho;
+  T signal;
   if constexpr (!Viscosity::active) {
-    st.q = 0.0;
+    st.q = T{};
     own_work_mismatch(st, eos.rho0(), J_before, J, pq_before, s_before, dt);
-    return std::sqrt(c2);
+    signal = square_root(c2);
   } else {
-    const double c_bulk = std::sqrt(c2_bulk);
+    const T c_bulk = square_root(c2_bulk);
     st.q = viscosity.pressure(rho, c_bulk, h, volume_rate);
     own_work_mismatch(st, eos.rho0(), J_before, J, pq_before, s_before, dt);
     // Fastest signal at this point: longitudinal sound speed plus the viscous speed.
-    const double Q = viscosity.signal(c_bulk, h, volume_rate);
-    return Q + std::sqrt(Q * Q + c2);
+    const T Q = viscosity.signal(c_bulk, h, volume_rate);
+    signal = Q + square_root(Q * Q + c2);
   }
+  if constexpr (lanes) return physical ? signal : constant<T>(-1.0);
+  else return signal;
 }
 
 struct StressUpdateResult {
@@ -136,7 +151,134 @@ struct StressUpdateResult {
   ExactSum work_mismatch;                   // sum of m (work - own trapezoid work) over the points [J]
 };
 
-// The update of every point, for one choice of laws.
+// Whether a law's part of the point update is written for Lanes as well as a double: its
+// `in_lanes` (number.hpp; the laws without it compute point by point).
+template <class Law, class = void>
+struct InLanes : std::false_type {};
+template <class Law>
+struct InLanes<Law, std::void_t<decltype(Law::in_lanes)>> : std::bool_constant<Law::in_lanes> {};
+
+// A per-point field as four lanes: points p..p+3 (kFour) or point p in every lane; and back.
+// Scalar is a double or a struct of n doubles (Mat, Deviator), Vector its Lanes form: component
+// k of the four points in lane order. Whole blocks of four components move as 4 x 4 transposes.
+template <bool kFour, class Scalar, class Vector>
+[[gnu::always_inline]] inline void load_points(Vector& out, const Scalar* at) {
+  constexpr std::size_t n = sizeof(Scalar) / sizeof(double);
+  static_assert(sizeof(Vector) == n * sizeof(Lanes), "a field's Lanes form holds four of its doubles each");
+  const auto* d = reinterpret_cast<const double*>(at);
+  Lanes v[n];
+  std::size_t k = 0;
+  if constexpr (kFour) {
+    for (; k + 4 <= n; k += 4) {
+      Lanes block[4];
+      for (std::size_t l = 0; l < 4; ++l) load_lanes(block[l], d + l * n + k);
+      transpose_lanes(block);
+      for (std::size_t c = 0; c < 4; ++c) v[k + c] = block[c];
+    }
+    for (; k < n; ++k) v[k] = Lanes{d[k], d[n + k], d[2 * n + k], d[3 * n + k]};
+  } else {
+    for (; k < n; ++k) v[k] = Lanes{} + d[k];
+  }
+  std::memcpy(static_cast<void*>(&out), v, sizeof v);
+}
+template <bool kFour, class Scalar, class Vector>
+[[gnu::always_inline]] inline void store_points(Scalar* at, const Vector& from) {
+  constexpr std::size_t n = sizeof(Scalar) / sizeof(double);
+  auto* d = reinterpret_cast<double*>(at);
+  Lanes v[n];
+  std::memcpy(v, static_cast<const void*>(&from), sizeof v);
+  std::size_t k = 0;
+  if constexpr (kFour) {
+    for (; k + 4 <= n; k += 4) {
+      Lanes block[4] = {v[k], v[k + 1], v[k + 2], v[k + 3]};
+      transpose_lanes(block);
+      for (std::size_t l = 0; l < 4; ++l) store_lanes(d + l * n + k, block[l]);
+    }
+    for (; k < n; ++k)
+      for (std::size_t l = 0; l < 4; ++l) d[l * n + k] = v[k][l];
+  } else {
+    for (; k < n; ++k) d[k] = v[k][0];
+  }
+}
+
+// The arithmetic of four lanes' step: the point update, then each lane's speed check and its
+// candidates for the largest signal speed. Not inlined, so that it is one body of instructions
+// whichever way its lanes were filled: the compiler may contract a*b + c into an FMA differently in
+// each place a formula is inlined, and a point must give the same bits in a group of four as alone.
+struct LaneSignals {
+  Lanes sound, volume;  // |v| + the point's signal speed; volume_change_signal |tr D|
+  LaneBits bad;         // a state that is not physical, or a runaway speed
+};
+// The model's numbers a step of points needs (model.hpp).
+struct PointStepConstants {
+  double cell_size, dt, taylor_quinney;
+  double speed_limit;           // |v| above this is a runaway
+  double volume_change_signal;  // a volume change's signal speed per |tr D|
+};
+template <int D, class Eos, class Strength, class Viscosity>
+[[gnu::noinline]] void step_lanes(PointState<D, Lanes>& st, const Vec<D, Lanes>& v, const Eos& eos,
+                                  const Strength& strength, const Viscosity& viscosity, const PointStepConstants& k,
+                                  LaneSignals& out) {
+  const Lanes signal = update_point<D>(st, eos, strength, viscosity, k.cell_size, k.dt, NoFailure{}, k.taylor_quinney);
+  Lanes speed2 = v[0] * v[0];
+  for (int d = 1; d < D; ++d) speed2 += v[d] * v[d];
+  out.bad = !(signal >= 0.0) || !(speed2 < k.speed_limit * k.speed_limit);
+  Lanes rate;
+  abs_lanes(rate, volume_rate_of(st));
+  out.sound = square_root(speed2) + signal;
+  out.volume = k.volume_change_signal * rate;
+}
+
+// The update of points p..p+3 (kFour: all of one body) or of point p alone in every lane.
+template <bool kFour, int D, class Eos, class Strength, class Viscosity>
+[[gnu::always_inline]] inline void update_four(Particles<D>& pts, std::size_t p, const Eos& eos, const Strength& strength,
+                                               const Viscosity& viscosity, const PointStepConstants& k,
+                                               const double* volume_rate, bool stores, bool heats, ExactSum& mismatch,
+                                               double& max_signal, std::size_t& first_bad) {
+  PointState<D, Lanes> st;
+  load_points<kFour>(st.L, &pts.L[p]);
+  load_points<kFour>(st.work, &pts.work[p]);
+  load_points<kFour>(st.F, &pts.F[p]);
+  load_points<kFour>(st.E, &pts.E[p]);
+  load_points<kFour>(st.P, &pts.P[p]);
+  load_points<kFour>(st.q, &pts.q[p]);
+  if (volume_rate) load_points<kFour>(st.volume_rate, &volume_rate[p]);
+  if constexpr (Strength::has_stress) {
+    load_points<kFour>(st.s, &pts.s[p]);
+    load_points<kFour>(st.eps_p, &pts.eps_p[p]);
+    if (stores) load_points<kFour>(st.E_stored, &pts.E_stored[p]);
+    if (heats) load_points<kFour>(st.plastic_heat, &pts.plastic_heat[p]);
+  }
+  if constexpr (Strength::has_back_stress) load_points<kFour>(st.alpha, &pts.alpha[p]);
+  Vec<D, Lanes> v;
+  load_points<kFour>(v, &pts.v[p]);
+  LaneSignals checks;
+  step_lanes<D>(st, v, eos, strength, viscosity, k, checks);
+  store_points<kFour>(&pts.F[p], st.F);
+  store_points<kFour>(&pts.E[p], st.E);
+  store_points<kFour>(&pts.P[p], st.P);
+  store_points<kFour>(&pts.q[p], st.q);
+  if constexpr (Strength::has_stress) {
+    store_points<kFour>(&pts.s[p], st.s);
+    store_points<kFour>(&pts.eps_p[p], st.eps_p);
+    if (stores) store_points<kFour>(&pts.E_stored[p], st.E_stored);
+    if (heats) store_points<kFour>(&pts.plastic_heat[p], st.plastic_heat);
+  }
+  if constexpr (Strength::has_back_stress) store_points<kFour>(&pts.alpha[p], st.alpha);
+  // NaN never wins the maximum (as in std::max over a list), so the largest speed is the same
+  // however points are grouped; comparisons are exact.
+  Lanes largest = Lanes{} + max_signal;
+  largest = checks.sound > largest ? checks.sound : largest;
+  largest = checks.volume > largest ? checks.volume : largest;
+  max_signal = std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3]));
+  for (std::size_t l = 0; l < (kFour ? 4 : 1); ++l) {
+    mismatch.add(pts.m[p + l] * st.work_mismatch[l]);
+    if (checks.bad[l]) first_bad = std::min(first_bad, p + l);
+  }
+}
+
+// The update of every point, for one choice of laws: four points at a time where the laws are
+// written for Lanes, else point by point.
 // `volume_rate`: the smoothed rates of volume change (volumetric_smoothing.hpp), or null.
 template <int D, class Eos, class Strength, class Viscosity, class Failure>
 StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const Model& model, double dt,
@@ -157,48 +299,73 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
   std::vector<ThreadSum> mismatch(static_cast<std::size_t>(omp_get_max_threads()));
   const bool stores = pts.stores_cold_work();       // taylor_quinney < 1
   const bool heats = pts.tracks_plastic_heat();     // temperature_model = paper
+  if constexpr (InLanes<Eos>::value && InLanes<Strength>::value && !Failure::active) {
+    // Groups of four points from range.begin; a group of points of different bodies, and the
+    // last points, one point at a time.
+    const std::size_t groups = (range.end - range.begin + 3) / 4;
+    const PointStepConstants k{model.cell_size, dt, model.taylor_quinney, model.speed_limit, model.volume_change_signal};
+#pragma omp parallel for schedule(dynamic, kChunk / 4) reduction(max : max_signal) reduction(min : first_bad)
+    for (std::size_t g = 0; g < groups; ++g) {
+      const std::size_t p = range.begin + 4 * g, n = std::min<std::size_t>(4, range.end - p);
+      ExactSum& sum = mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum;
+      const auto b = static_cast<std::size_t>(pts.body[p]);
+      bool one_body = n == 4;
+      for (std::size_t l = 1; l < n; ++l) one_body = one_body && pts.body[p + l] == pts.body[p];
+      if (one_body) {
+        update_four<true>(pts, p, *eos_of[b], *strength_of[b], viscosity, k, volume_rate, stores, heats, sum, max_signal,
+                          first_bad);
+      } else {
+        for (std::size_t q = p; q < p + n; ++q) {
+          const auto c = static_cast<std::size_t>(pts.body[q]);
+          update_four<false>(pts, q, *eos_of[c], *strength_of[c], viscosity, k, volume_rate, stores, heats, sum,
+                             max_signal, first_bad);
+        }
+      }
+    }
+  } else {
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(max : max_signal) reduction(min : first_bad)
-  for (std::size_t p = range.begin; p < range.end; ++p) {
-    PointState<D> st{pts.L[p], pts.work[p], pts.F[p], pts.E[p], pts.P[p], pts.q[p], {}, {}, 0.0};
-    if (volume_rate) st.volume_rate = volume_rate[p];
-    if constexpr (Strength::has_stress) {
-      st.s = pts.s[p];
-      st.eps_p = pts.eps_p[p];
+    for (std::size_t p = range.begin; p < range.end; ++p) {
+      PointState<D> st{pts.L[p], pts.work[p], pts.F[p], pts.E[p], pts.P[p], pts.q[p], {}, {}, 0.0};
+      if (volume_rate) st.volume_rate = volume_rate[p];
+      if constexpr (Strength::has_stress) {
+        st.s = pts.s[p];
+        st.eps_p = pts.eps_p[p];
+      }
+      if constexpr (Strength::has_back_stress) st.alpha = pts.alpha[p];
+      if constexpr (Failure::active) {
+        st.failure_J = pts.failure_J[p];
+        st.damage = pts.damage[p];
+      }
+      if constexpr (Strength::has_stress) {
+        if (stores) st.E_stored = pts.E_stored[p];
+        if (heats) st.plastic_heat = pts.plastic_heat[p];
+      }
+      const auto b = static_cast<std::size_t>(pts.body[p]);
+      const double signal =
+          update_point<D>(st, *eos_of[b], *strength_of[b], viscosity, model.cell_size, dt, failure, model.taylor_quinney);
+      pts.F[p] = st.F;
+      pts.E[p] = st.E;
+      pts.P[p] = st.P;
+      pts.q[p] = st.q;
+      if constexpr (Strength::has_stress) {
+        pts.s[p] = st.s;
+        pts.eps_p[p] = st.eps_p;
+      }
+      if constexpr (Strength::has_back_stress) pts.alpha[p] = st.alpha;
+      if constexpr (Failure::active) {
+        pts.failure_J[p] = st.failure_J;
+        pts.damage[p] = st.damage;
+      }
+      if constexpr (Strength::has_stress) {
+        if (stores) pts.E_stored[p] = st.E_stored;
+        if (heats) pts.plastic_heat[p] = st.plastic_heat;
+      }
+      mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum.add(pts.m[p] * st.work_mismatch);
+      const double speed2 = dot(pts.v[p], pts.v[p]);
+      if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;
+      max_signal = std::max(
+          {max_signal, std::sqrt(speed2) + signal, model.volume_change_signal * std::abs(volume_rate_of(st))});
     }
-    if constexpr (Strength::has_back_stress) st.alpha = pts.alpha[p];
-    if constexpr (Failure::active) {
-      st.failure_J = pts.failure_J[p];
-      st.damage = pts.damage[p];
-    }
-    if constexpr (Strength::has_stress) {
-      if (stores) st.E_stored = pts.E_stored[p];
-      if (heats) st.plastic_heat = pts.plastic_heat[p];
-    }
-    const auto b = static_cast<std::size_t>(pts.body[p]);
-    const double signal =
-        update_point<D>(st, *eos_of[b], *strength_of[b], viscosity, model.cell_size, dt, failure, model.taylor_quinney);
-    pts.F[p] = st.F;
-    pts.E[p] = st.E;
-    pts.P[p] = st.P;
-    pts.q[p] = st.q;
-    if constexpr (Strength::has_stress) {
-      pts.s[p] = st.s;
-      pts.eps_p[p] = st.eps_p;
-    }
-    if constexpr (Strength::has_back_stress) pts.alpha[p] = st.alpha;
-    if constexpr (Failure::active) {
-      pts.failure_J[p] = st.failure_J;
-      pts.damage[p] = st.damage;
-    }
-    if constexpr (Strength::has_stress) {
-      if (stores) pts.E_stored[p] = st.E_stored;
-      if (heats) pts.plastic_heat[p] = st.plastic_heat;
-    }
-    mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum.add(pts.m[p] * st.work_mismatch);
-    const double speed2 = dot(pts.v[p], pts.v[p]);
-    if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;
-    max_signal = std::max(
-        {max_signal, std::sqrt(speed2) + signal, model.volume_change_signal * std::abs(volume_rate_of(st))});
   }
   ExactSum total_mismatch;
   for (const ThreadSum& t : mismatch) total_mismatch += t.sum;

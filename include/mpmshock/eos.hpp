@@ -28,8 +28,10 @@
 
 #include <cmath>
 #include <string_view>
+#include <type_traits>
 
 #include "mpmshock/material.hpp"
+#include "mpmshock/number.hpp"
 
 namespace mpmshock {
 
@@ -42,6 +44,7 @@ class MieGruneisen {
   static MaterialLaw law();  // its keys and checks (src/laws/mie_gruneisen.cpp)
   static constexpr std::string_view kName = "mie_gruneisen";
   static constexpr bool kHugoniotReference = true;
+  static constexpr bool in_lanes = true;  // its points may be updated four at a time (constitutive.hpp)
   // The reference bulk sound speed from the constants alone (scene checks, before they are checked).
   static double sound_speed_of(const Material& mat) { return mat.sound_speed; }
 
@@ -75,13 +78,16 @@ class MieGruneisen {
   double gamma_rho() const { return gamma0_ * rho0_; }
 
   // Pressure and squared bulk sound speed of a state, sharing the Hugoniot terms (one division):
-  // the constitutive update needs both every step.
-  struct State {
-    double pressure, sound_speed_squared;
+  // the constitutive update needs both every step. T: a double, or four points' Lanes (number.hpp).
+  template <class T>
+  struct StateOf {
+    T pressure, sound_speed_squared;
   };
-  State state(double J, double E) const {
-    const Hugoniot h = hugoniot(J);
-    const double P = mie_gruneisen(h, J, E);
+  using State = StateOf<double>;
+  template <class T>
+  [[gnu::always_inline]] StateOf<T> state(const T& J, const T& E) const {
+    const HugoniotOf<T> h = hugoniot(J);
+    const T P = mie_gruneisen(h, J, E);
     return {P, bulk_sound_speed_squared(h, J, P)};
   }
 
@@ -100,20 +106,52 @@ class MieGruneisen {
   double reference_sound_speed() const { return c0_; }
 
  private:
-  struct Hugoniot {
-    double pressure, slope, energy;  // P_r, dP_r/deta, E_r
-    double stiffness;                // P_r' + gamma0 rho0 dE_r/deta, the sound speed's bracket less gamma0 P
+  template <class T>
+  struct HugoniotOf {
+    T pressure, slope, energy;  // P_r, dP_r/deta, E_r
+    T stiffness;                // P_r' + gamma0 rho0 dE_r/deta, the sound speed's bracket less gamma0 P
   };
-  Hugoniot hugoniot(double J) const {
-    const double eta = 1.0 - J;
-    if (eta < 0.0) {
-      if (rose_) return cold_expansion(J);
-      const double P = K0_ * eta;  // the linear branch (errata row 3)
-      return {P, K0_, 0.5 * P * eta / rho0_, K0_ * (1.0 - 0.5 * gamma0_ * eta) - 0.5 * gamma0_ * P};
+  using Hugoniot = HugoniotOf<double>;
+  // In Lanes the compressed branch is computed for every lane and the expanded one, where a lane
+  // expands, chosen for it; Rose's curve (a cube root and an exponential) point by point.
+  template <class T>
+  HugoniotOf<T> hugoniot(const T& J) const {
+    const T eta = 1.0 - J;
+    if constexpr (std::is_same_v<T, double>) {
+      if (eta < 0.0) return rose_ ? cold_expansion(J) : linear_expansion(eta);
+      return compressed(eta);
+    } else {
+      HugoniotOf<T> h = compressed(eta);
+      const auto expanded = eta < 0.0;
+      if (!any(expanded)) return h;
+      if (rose_) {
+        for (int l = 0; l < 4; ++l)
+          if (eta[l] < 0.0) {
+            const Hugoniot c = cold_expansion(J[l]);
+            h.pressure[l] = c.pressure;
+            h.slope[l] = c.slope;
+            h.energy[l] = c.energy;
+            h.stiffness[l] = c.stiffness;
+          }
+        return h;
+      }
+      const HugoniotOf<T> e = linear_expansion(eta);
+      return {expanded ? e.pressure : h.pressure, expanded ? e.slope : h.slope, expanded ? e.energy : h.energy,
+              expanded ? e.stiffness : h.stiffness};
     }
-    const double inv_d = 1.0 / (1.0 - s_ * eta);
-    const double P = K0_ * eta * inv_d * inv_d, slope = K0_ * (1.0 + s_ * eta) * inv_d * inv_d * inv_d;
+  }
+  // The Us-up Hugoniot (eta >= 0).
+  template <class T>
+  HugoniotOf<T> compressed(const T& eta) const {
+    const T inv_d = 1.0 / (1.0 - s_ * eta);
+    const T P = K0_ * eta * inv_d * inv_d, slope = K0_ * (1.0 + s_ * eta) * inv_d * inv_d * inv_d;
     return {P, slope, 0.5 * P * eta / rho0_, slope * (1.0 - 0.5 * gamma0_ * eta) - 0.5 * gamma0_ * P};
+  }
+  // The linear expanded branch (errata row 3).
+  template <class T>
+  HugoniotOf<T> linear_expansion(const T& eta) const {
+    const T P = K0_ * eta;
+    return {P, constant<T>(K0_), 0.5 * P * eta / rho0_, K0_ * (1.0 - 0.5 * gamma0_ * eta) - 0.5 * gamma0_ * P};
   }
   // Rose's universal binding curve (see the top of the file).
   Hugoniot cold_expansion(double J) const {
@@ -125,8 +163,10 @@ class MieGruneisen {
     const double E = E_coh_ * (1.0 - (1.0 + a) * decay);
     return {P, slope, E, slope - gamma0_ * P};
   }
-  double mie_gruneisen(const Hugoniot& h, double, double E) const { return h.pressure + gamma_rho() * (E - h.energy); }
-  double bulk_sound_speed_squared(const Hugoniot& h, double J, double P) const {
+  template <class T>
+  T mie_gruneisen(const HugoniotOf<T>& h, const T&, const T& E) const { return h.pressure + gamma_rho() * (E - h.energy); }
+  template <class T>
+  T bulk_sound_speed_squared(const HugoniotOf<T>& h, const T& J, const T& P) const {
     return (J * J / rho0_) * (h.stiffness + gamma0_ * P);
   }
 

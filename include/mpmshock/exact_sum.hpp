@@ -28,7 +28,7 @@ class ExactSum {
 
   ExactSum() { words_.fill(0); }
 
-  void add(double x) {
+  [[gnu::always_inline]] void add(double x) {
     std::uint64_t bits;
     std::memcpy(&bits, &x, sizeof bits);
     if ((bits << 1) == 0) return;  // +-0, common (states at rest)

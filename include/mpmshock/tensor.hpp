@@ -9,14 +9,17 @@
 
 #include <cmath>
 
+#include "mpmshock/number.hpp"
+
 namespace mpmshock {
 
-template <int D>
+// T: the number type, a double or four points' Lanes (number.hpp).
+template <int D, class T = double>
 struct Vec {
   static_assert(D == 2 || D == 3, "mpmshock runs in 2 or 3 dimensions");
-  double c[D];
-  double& operator[](int i) { return c[i]; }
-  double operator[](int i) const { return c[i]; }
+  T c[D];
+  T& operator[](int i) { return c[i]; }
+  const T& operator[](int i) const { return c[i]; }
 };
 
 // |v|
@@ -35,41 +38,44 @@ inline double dot(const Vec<D>& a, const Vec<D>& b) {
 }
 
 // A D x D matrix, row i, column j: M(i, j). Deformation gradient F[i][j] = dx_i/dX_j, velocity
-// gradient L[i][j] = dv_i/dx_j.
-template <int D>
+// gradient L[i][j] = dv_i/dx_j. T: the number type, a double or four points' Lanes (number.hpp);
+// the point update computes with both, everything else with doubles.
+template <int D, class T = double>
 struct Mat {
-  double c[D][D];
-  double& operator()(int i, int j) { return c[i][j]; }
-  double operator()(int i, int j) const { return c[i][j]; }
+  T c[D][D];
+  T& operator()(int i, int j) { return c[i][j]; }
+  const T& operator()(int i, int j) const { return c[i][j]; }
   static Mat identity() {
     Mat m{};
-    for (int i = 0; i < D; ++i) m.c[i][i] = 1.0;
+    for (int i = 0; i < D; ++i) m.c[i][i] = m.c[i][i] + 1.0;
     return m;
   }
 };
 
 // tr M
-template <int D>
-inline double trace(const Mat<D>& m) {
-  double t = m(0, 0);
+template <int D, class T>
+inline T trace(const Mat<D, T>& m) {
+  T t = m(0, 0);
   for (int i = 1; i < D; ++i) t += m(i, i);
   return t;
 }
 
 // det M; for F, J = V / V0 (plane strain: F_zz = 1).
-inline double det(const Mat<2>& m) { return m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0); }
-inline double det(const Mat<3>& m) {
+template <class T>
+inline T det(const Mat<2, T>& m) { return m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0); }
+template <class T>
+inline T det(const Mat<3, T>& m) {
   return m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0)) +
          m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
 }
 
 // A B
-template <int D>
-inline Mat<D> product(const Mat<D>& a, const Mat<D>& b) {
-  Mat<D> r;
+template <int D, class T>
+inline Mat<D, T> product(const Mat<D, T>& a, const Mat<D, T>& b) {
+  Mat<D, T> r;
   for (int i = 0; i < D; ++i)
     for (int j = 0; j < D; ++j) {
-      double s = a(i, 0) * b(0, j);
+      T s = a(i, 0) * b(0, j);
       for (int k = 1; k < D; ++k) s += a(i, k) * b(k, j);
       r(i, j) = s;
     }
@@ -79,91 +85,114 @@ inline Mat<D> product(const Mat<D>& a, const Mat<D>& b) {
 // A trace-free symmetric 3x3 tensor (deviatoric stress s, back stress alpha). The zz component is
 // not stored but is -(xx + yy): exact in exact arithmetic, and the same rule in both dimensions.
 // In plane strain (D = 2) yz = zx = 0 and three numbers carry it; in 3D five.
-template <int D>
+template <int D, class T = double>
 struct Deviator;
 
-template <>
-struct Deviator<2> {
-  double xx = 0.0, yy = 0.0, xy = 0.0;
-  double zz() const { return -(xx + yy); }
-  double yz() const { return 0.0; }
-  double zx() const { return 0.0; }
+template <class T>
+struct Deviator<2, T> {
+  T xx{}, yy{}, xy{};
+  T zz() const { return -(xx + yy); }
+  T yz() const { return T{}; }
+  T zx() const { return T{}; }
   // ||a||^2 = a:a over the full 3x3 tensor.
-  double norm2() const { return xx * xx + yy * yy + zz() * zz() + 2.0 * xy * xy; }
+  T norm2() const { return xx * xx + yy * yy + zz() * zz() + 2.0 * xy * xy; }
 };
 
-template <>
-struct Deviator<3> {
-  double xx = 0.0, yy = 0.0, xy = 0.0, yz_ = 0.0, zx_ = 0.0;
-  double zz() const { return -(xx + yy); }
-  double yz() const { return yz_; }
-  double zx() const { return zx_; }
-  double norm2() const {
+template <class T>
+struct Deviator<3, T> {
+  T xx{}, yy{}, xy{}, yz_{}, zx_{};
+  T zz() const { return -(xx + yy); }
+  T yz() const { return yz_; }
+  T zx() const { return zx_; }
+  T norm2() const {
     return xx * xx + yy * yy + zz() * zz() + 2.0 * xy * xy + 2.0 * yz_ * yz_ + 2.0 * zx_ * zx_;
   }
 };
 
-inline Deviator<2> operator+(const Deviator<2>& a, const Deviator<2>& b) { return {a.xx + b.xx, a.yy + b.yy, a.xy + b.xy}; }
-inline Deviator<2> operator-(const Deviator<2>& a, const Deviator<2>& b) { return {a.xx - b.xx, a.yy - b.yy, a.xy - b.xy}; }
-inline Deviator<2> operator*(double k, const Deviator<2>& a) { return {k * a.xx, k * a.yy, k * a.xy}; }
-inline Deviator<3> operator+(const Deviator<3>& a, const Deviator<3>& b) {
+template <class T>
+inline Deviator<2, T> operator+(const Deviator<2, T>& a, const Deviator<2, T>& b) {
+  return {a.xx + b.xx, a.yy + b.yy, a.xy + b.xy};
+}
+template <class T>
+inline Deviator<2, T> operator-(const Deviator<2, T>& a, const Deviator<2, T>& b) {
+  return {a.xx - b.xx, a.yy - b.yy, a.xy - b.xy};
+}
+template <class K, class T>
+inline Deviator<2, T> operator*(const K& k, const Deviator<2, T>& a) { return {k * a.xx, k * a.yy, k * a.xy}; }
+template <class T>
+inline Deviator<3, T> operator+(const Deviator<3, T>& a, const Deviator<3, T>& b) {
   return {a.xx + b.xx, a.yy + b.yy, a.xy + b.xy, a.yz_ + b.yz_, a.zx_ + b.zx_};
 }
-inline Deviator<3> operator-(const Deviator<3>& a, const Deviator<3>& b) {
+template <class T>
+inline Deviator<3, T> operator-(const Deviator<3, T>& a, const Deviator<3, T>& b) {
   return {a.xx - b.xx, a.yy - b.yy, a.xy - b.xy, a.yz_ - b.yz_, a.zx_ - b.zx_};
 }
-inline Deviator<3> operator*(double k, const Deviator<3>& a) {
+template <class K, class T>
+inline Deviator<3, T> operator*(const K& k, const Deviator<3, T>& a) {
   return {k * a.xx, k * a.yy, k * a.xy, k * a.yz_, k * a.zx_};
+}
+// Lane by lane, a where the condition holds, else b (for a double: the condition is a bool).
+template <class M, class T>
+inline Deviator<2, T> choose(const M& where, const Deviator<2, T>& a, const Deviator<2, T>& b) {
+  return {where ? a.xx : b.xx, where ? a.yy : b.yy, where ? a.xy : b.xy};
+}
+template <class M, class T>
+inline Deviator<3, T> choose(const M& where, const Deviator<3, T>& a, const Deviator<3, T>& b) {
+  return {where ? a.xx : b.xx, where ? a.yy : b.yy, where ? a.xy : b.xy, where ? a.yz_ : b.yz_, where ? a.zx_ : b.zx_};
 }
 
 // Equivalent (von Mises) stress sqrt(3/2) ||a||.
-template <int D>
-inline double equivalent_stress(const Deviator<D>& a) {
-  return std::sqrt(1.5 * a.norm2());
+template <int D, class T>
+inline T equivalent_stress(const Deviator<D, T>& a) {
+  return square_root(1.5 * a.norm2());
 }
 
 // a : A for a deviator a and a D x D matrix A (the stress power s : L, the spin drops out).
-inline double contract(const Deviator<2>& a, const Mat<2>& m) {
+template <class T>
+inline T contract(const Deviator<2, T>& a, const Mat<2, T>& m) {
   return a.xx * m(0, 0) + a.yy * m(1, 1) + a.xy * (m(0, 1) + m(1, 0));
 }
-inline double contract(const Deviator<3>& a, const Mat<3>& m) {
+template <class T>
+inline T contract(const Deviator<3, T>& a, const Mat<3, T>& m) {
   return a.xx * m(0, 0) + a.yy * m(1, 1) + a.zz() * m(2, 2) + a.xy * (m(0, 1) + m(1, 0)) +
          a.yz_ * (m(1, 2) + m(2, 1)) + a.zx_ * (m(2, 0) + m(0, 2));
 }
 
 // The velocity gradient split into what the stress update needs: the rate of deformation
 // D = sym(L) and the spin W = skew(L). Plane strain: D_zz = 0 and W has one component W_xy.
-template <int D>
+template <int D, class T = double>
 struct StrainRate;
 
-template <>
-struct StrainRate<2> {
-  double xx, yy, xy;  // D
-  double spin;        // W_xy = (L_xy - L_yx)/2
-  double trace() const { return xx + yy; }
-  double norm2() const { return xx * xx + yy * yy + 2.0 * xy * xy; }  // D : D
-  Deviator<2> deviator() const {
-    const double third = trace() / 3.0;
+template <class T>
+struct StrainRate<2, T> {
+  T xx, yy, xy;  // D
+  T spin;        // W_xy = (L_xy - L_yx)/2
+  T trace() const { return xx + yy; }
+  T norm2() const { return xx * xx + yy * yy + 2.0 * xy * xy; }  // D : D
+  Deviator<2, T> deviator() const {
+    const T third = trace() / 3.0;
     return {xx - third, yy - third, xy};  // zz = -tr D/3, consistent with Deviator::zz()
   }
 };
 
-template <>
-struct StrainRate<3> {
-  double xx, yy, zz, xy, yz, zx;  // D
-  double w_xy, w_yz, w_zx;        // W_ij = (L_ij - L_ji)/2
-  double trace() const { return xx + yy + zz; }
-  double norm2() const { return xx * xx + yy * yy + zz * zz + 2.0 * xy * xy + 2.0 * yz * yz + 2.0 * zx * zx; }
-  Deviator<3> deviator() const {
-    const double third = trace() / 3.0;
+template <class T>
+struct StrainRate<3, T> {
+  T xx, yy, zz, xy, yz, zx;  // D
+  T w_xy, w_yz, w_zx;        // W_ij = (L_ij - L_ji)/2
+  T trace() const { return xx + yy + zz; }
+  T norm2() const { return xx * xx + yy * yy + zz * zz + 2.0 * xy * xy + 2.0 * yz * yz + 2.0 * zx * zx; }
+  Deviator<3, T> deviator() const {
+    const T third = trace() / 3.0;
     return {xx - third, yy - third, xy, yz, zx};
   }
 };
 
-inline StrainRate<2> strain_rate(const Mat<2>& L) {
+template <class T>
+inline StrainRate<2, T> strain_rate(const Mat<2, T>& L) {
   return {L(0, 0), L(1, 1), 0.5 * (L(0, 1) + L(1, 0)), 0.5 * (L(0, 1) - L(1, 0))};
 }
-inline StrainRate<3> strain_rate(const Mat<3>& L) {
+template <class T>
+inline StrainRate<3, T> strain_rate(const Mat<3, T>& L) {
   return {L(0, 0),
           L(1, 1),
           L(2, 2),
@@ -179,32 +208,35 @@ inline StrainRate<3> strain_rate(const Mat<3>& L) {
 // R = (I - W dt/2)^-1 (I + W dt/2), orthogonal for any dt (a rotated tensor keeps its norm to
 // round-off) and second-order accurate against exp(W dt) (its angle is 2 atan(w dt/2)). The
 // forward-Euler rate a += dt (W a - a W) would grow ||a|| by sqrt(1 + 4 (w dt)^2) every step.
-template <int D>
+template <int D, class T = double>
 struct Rotation;
 
-template <>
-struct Rotation<2> {
-  double c, s;  // R = [[c, s], [-s, c]]; no rotation about anything but z in plane strain
+template <class T>
+struct Rotation<2, T> {
+  T c, s;  // R = [[c, s], [-s, c]]; no rotation about anything but z in plane strain
 };
-template <>
-struct Rotation<3> {
-  double r[3][3];
+template <class T>
+struct Rotation<3, T> {
+  T r[3][3];
 };
 
-inline Rotation<2> spin_rotation(const StrainRate<2>& D, double dt) {
-  const double t = 0.5 * dt * D.spin, inv = 1.0 / (1.0 + t * t);
+template <class T>
+inline Rotation<2, T> spin_rotation(const StrainRate<2, T>& D, double dt) {
+  const T t = 0.5 * dt * D.spin, inv = 1.0 / (1.0 + t * t);
   return {(1.0 - t * t) * inv, 2.0 * t * inv};
 }
-inline Rotation<3> spin_rotation(const StrainRate<3>& D, double dt) {
+template <class T>
+inline Rotation<3, T> spin_rotation(const StrainRate<3, T>& D, double dt) {
   // A = W dt/2 is skew; (I - A)^-1 (I + A) = I + 2/(1 + |a|^2) (A + A^2), |a|^2 = ||A||_F^2 / 2.
   const double h = 0.5 * dt;
-  const double A[3][3] = {{0.0, h * D.w_xy, -h * D.w_zx}, {-h * D.w_xy, 0.0, h * D.w_yz}, {h * D.w_zx, -h * D.w_yz, 0.0}};
-  const double a2 = h * h * (D.w_xy * D.w_xy + D.w_yz * D.w_yz + D.w_zx * D.w_zx);
-  const double k = 2.0 / (1.0 + a2);
-  Rotation<3> R;
+  const T zero{};
+  const T A[3][3] = {{zero, h * D.w_xy, -h * D.w_zx}, {-h * D.w_xy, zero, h * D.w_yz}, {h * D.w_zx, -h * D.w_yz, zero}};
+  const T a2 = h * h * (D.w_xy * D.w_xy + D.w_yz * D.w_yz + D.w_zx * D.w_zx);
+  const T k = 2.0 / (1.0 + a2);
+  Rotation<3, T> R;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      double A2 = 0.0;
+      T A2{};
       for (int m = 0; m < 3; ++m) A2 += A[i][m] * A[m][j];
       R.r[i][j] = (i == j ? 1.0 : 0.0) + k * (A[i][j] + A2);
     }
@@ -212,23 +244,25 @@ inline Rotation<3> spin_rotation(const StrainRate<3>& D, double dt) {
 }
 
 // R a R^T: a deviator carried along by the material's rotation (the Jaumann rate's spin part).
-inline Deviator<2> rotate(const Deviator<2>& a, const Rotation<2>& R) {
-  const double cc = R.c * R.c, ss = R.s * R.s, cs = R.c * R.s;
+template <class T>
+inline Deviator<2, T> rotate(const Deviator<2, T>& a, const Rotation<2, T>& R) {
+  const T cc = R.c * R.c, ss = R.s * R.s, cs = R.c * R.s;
   return {cc * a.xx + 2.0 * cs * a.xy + ss * a.yy, ss * a.xx - 2.0 * cs * a.xy + cc * a.yy,
           cs * (a.yy - a.xx) + (cc - ss) * a.xy};
 }
-inline Deviator<3> rotate(const Deviator<3>& a, const Rotation<3>& R) {
-  const double A[3][3] = {{a.xx, a.xy, a.zx()}, {a.xy, a.yy, a.yz()}, {a.zx(), a.yz(), a.zz()}};
-  double RA[3][3], out[3][3];
+template <class T>
+inline Deviator<3, T> rotate(const Deviator<3, T>& a, const Rotation<3, T>& R) {
+  const T A[3][3] = {{a.xx, a.xy, a.zx()}, {a.xy, a.yy, a.yz()}, {a.zx(), a.yz(), a.zz()}};
+  T RA[3][3], out[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      double s = 0.0;
+      T s{};
       for (int m = 0; m < 3; ++m) s += R.r[i][m] * A[m][j];
       RA[i][j] = s;
     }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      double s = 0.0;
+      T s{};
       for (int m = 0; m < 3; ++m) s += RA[i][m] * R.r[j][m];
       out[i][j] = s;
     }

@@ -26,6 +26,7 @@ namespace mpmshock {
 struct NoStrength {
   static constexpr bool has_stress = false;
   static constexpr bool has_back_stress = false;
+  static constexpr bool in_lanes = true;  // its points may be updated four at a time (constitutive.hpp)
 };
 
 template <bool BackStress, bool Softening = false>
@@ -33,6 +34,7 @@ struct VonMises {
   static constexpr bool has_stress = true;
   static constexpr bool has_back_stress = BackStress;
   static constexpr bool softens = Softening;
+  static constexpr bool in_lanes = !Softening;  // softening is computed point by point
 
   double shear_modulus;    // G
   double plastic_modulus;  // H = E E_tan / (E - E_tan)
@@ -54,18 +56,21 @@ struct VonMises {
 
   // The yield radius only ever grows by beta H d eps_p, so it is a function of the effective
   // plastic strain and need not be stored. With Softening it stops at Steinberg-Guinan's Y_max.
-  double yield_radius(double eps_p) const {
-    if constexpr (Softening) return std::min(hardened_yield(eps_p), softening.yield_max);
+  // T: a double, or four points' Lanes (number.hpp) without Softening.
+  template <class T>
+  T yield_radius(const T& eps_p) const {
+    if constexpr (Softening) return minimum(hardened_yield(eps_p), constant<T>(softening.yield_max));
     return hardened_yield(eps_p);
   }
   // The hardening modulus at eps_p: none once the yield radius has reached Y_max.
-  double hardening_at(double eps_p) const {
-    if constexpr (Softening)
-      if (hardened_yield(eps_p) >= softening.yield_max) return 0.0;
-    return plastic_modulus;
+  template <class T>
+  T hardening_at(const T& eps_p) const {
+    if constexpr (Softening) return hardened_yield(eps_p) >= softening.yield_max ? T{} : constant<T>(plastic_modulus);
+    return constant<T>(plastic_modulus);
   }
   // sigma_Y0 + beta H eps_p, the linear hardening law before any cap.
-  double hardened_yield(double eps_p) const { return initial_yield + beta * plastic_modulus * eps_p; }
+  template <class T>
+  T hardened_yield(const T& eps_p) const { return initial_yield + beta * plastic_modulus * eps_p; }
 
   // Radial return of a trial deviatoric stress onto sqrt(3/2)||s - alpha|| = sigma_Y(eps_p).
   // Updates s, alpha and eps_p in place; returns the effective plastic strain increment
@@ -73,23 +78,25 @@ struct VonMises {
   // The yield radius grows by beta H d eps_p; the back stress by (1 - beta) (2/3) H d e_p with
   // d e_p = sqrt(3/2) d eps_p n the plastic strain increment along n = xi/||xi||. With beta = 1
   // alpha stays zero, which is why callers may pass a scratch zero for it.
-  // With a softening factor k, G, H and the yield radius are k times theirs.
-  template <int D>
-  double return_map(Deviator<D>& s, Deviator<D>& alpha, double& eps_p, double k = 1.0) const {
-    const Deviator<D> xi = s - alpha;
-    const double q_trial = equivalent_stress(xi);
-    const double f = q_trial - k * yield_radius(eps_p);
-    if (f <= 0.0) return 0.0;
+  // With a softening factor k, G, H and the yield radius are k times theirs. In Lanes, the lanes
+  // that do not yield keep s, alpha and eps_p as they were.
+  template <int D, class T = double>
+  T return_map(Deviator<D, T>& s, Deviator<D, T>& alpha, T& eps_p, const T& k = constant<T>(1.0)) const {
+    const Deviator<D, T> xi = s - alpha;
+    const T q_trial = equivalent_stress(xi);
+    const T f = q_trial - k * yield_radius(eps_p);
+    const auto yields = !(f <= 0.0);  // a NaN goes on, as it always has
+    if (!any(yields)) return T{};
     // A step that crosses Y_max hardens at H up to its end; the next steps do not harden.
-    const double G = k * shear_modulus, H = k * hardening_at(eps_p);
-    const double deps_p = f / (3.0 * G + H);
+    const T G = k * shear_modulus, H = k * hardening_at(eps_p);
+    const T deps_p = yields ? f / (3.0 * G + H) : T{};
     // n = xi / ||xi||, ||xi|| = sqrt(2/3) q_trial; plastic strain increment d e_p = sqrt(3/2) deps_p n.
-    const double to_unit = 1.0 / (std::sqrt(2.0 / 3.0) * q_trial);
-    const double dgamma = std::sqrt(1.5) * deps_p;  // ||d e_p||
-    const Deviator<D> n = to_unit * xi;
-    s = s - (2.0 * G * dgamma) * n;
-    alpha = alpha + ((1.0 - beta) * (2.0 / 3.0) * H * dgamma) * n;
-    eps_p += deps_p;
+    const T to_unit = 1.0 / (std::sqrt(2.0 / 3.0) * q_trial);
+    const T dgamma = std::sqrt(1.5) * deps_p;  // ||d e_p||
+    const Deviator<D, T> n = to_unit * xi;
+    s = choose(yields, s - (2.0 * G * dgamma) * n, s);
+    alpha = choose(yields, alpha + ((1.0 - beta) * (2.0 / 3.0) * H * dgamma) * n, alpha);
+    eps_p = yields ? eps_p + deps_p : eps_p;
     return deps_p;
   }
 
@@ -99,11 +106,11 @@ struct VonMises {
   // radial return.
   // Returns the plastic work per unit volume, sigma_Y d eps_p. J and the thermal part of the
   // specific internal energy give the temperature, and P the pressure of the Steinberg-Guinan
-  // factor, with Softening only.
-  template <int D>
-  double update(Deviator<D>& s, Deviator<D>& alpha, double& eps_p, const StrainRate<D>& rate, double dt,
-                [[maybe_unused]] double J, [[maybe_unused]] double E_thermal, [[maybe_unused]] double P) const {
-    double k = 1.0;
+  // factor, with Softening only (a double: softening is computed point by point).
+  template <int D, class T>
+  T update(Deviator<D, T>& s, Deviator<D, T>& alpha, T& eps_p, const StrainRate<D, T>& rate, double dt,
+           [[maybe_unused]] const T& J, [[maybe_unused]] const T& E_thermal, [[maybe_unused]] const T& P) const {
+    T k = constant<T>(1.0);
     if constexpr (Softening) {
       k = softening.factor(P, thermal.temperature(J, E_thermal), J);
       if (k == 0.0) {  // molten: a fluid
@@ -112,10 +119,10 @@ struct VonMises {
         return 0.0;
       }
     }
-    const Rotation<D> R = spin_rotation(rate, dt);
+    const Rotation<D, T> R = spin_rotation(rate, dt);
     s = rotate(s, R) + (dt * 2.0 * k * shear_modulus) * rate.deviator();
     if constexpr (BackStress) alpha = rotate(alpha, R);
-    const double deps_p = return_map(s, alpha, eps_p, k);
+    const T deps_p = return_map(s, alpha, eps_p, k);
     return k * yield_radius(eps_p) * deps_p;
   }
 };

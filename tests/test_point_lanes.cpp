@@ -1,0 +1,225 @@
+// The point update four points at a time (Lanes, number.hpp; constitutive.hpp's step_lanes, which
+// the run's kernel calls for Mie-Grüneisen with no strength or von Mises without softening):
+//   1. each lane agrees with the same point updated alone as a double, the same formulas (to a few
+//      ulp: the compiler may contract a*b + c into an FMA differently in the two), and marks the
+//      same states as not physical;
+//   2. a point's lane gives the same bits whatever the other lanes hold and whichever lane it is
+//      in (threads and MPI ranks group points differently: outputs must not depend on it).
+// The states are random: compressed and expanded (Rose's bound curve and the linear branch),
+// elastic and yielding, with and without back stress, viscosity and volumetric smoothing, in 2D
+// and 3D, and a few not physical (J past the equation of state's limit, an infinite energy).
+#include <cstring>
+#include <random>
+
+#include "check.hpp"
+#include "mpmshock/constitutive.hpp"
+#include "mpmshock/von_mises.hpp"
+
+using namespace mpmshock;
+
+namespace {
+
+constexpr double kDt = 1e-10, kH = 5e-6;
+
+template <int D>
+PointState<D> random_state(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  PointState<D> st{};
+  const double kind = 0.5 * (u(rng) + 1.0);
+  // F near the identity, compressed by up to 40 % or expanded by up to 40 %; rare extremes.
+  const double volume = kind < 0.05 ? 0.2 : 1.0 + 0.4 * u(rng);
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) {
+      st.F(i, j) = (i == j ? (i == D - 1 ? volume : 1.0) : 0.0) + 0.05 * u(rng);
+      st.L(i, j) = 1e8 * u(rng);
+    }
+  st.E = 1e6 * (u(rng) + 1.0);
+  if (kind > 0.97) st.E = std::numeric_limits<double>::infinity();
+  st.work = 1e3 * u(rng);
+  st.P = 1e10 * u(rng);
+  st.q = 1e9 * (u(rng) + 1.0);
+  const double s_scale = kind < 0.5 ? 1e7 : 3e8;  // below and far above the yield stress
+  if constexpr (D == 2) {
+    st.s = {s_scale * u(rng), s_scale * u(rng), s_scale * u(rng)};
+    st.alpha = {1e7 * u(rng), 1e7 * u(rng), 1e7 * u(rng)};
+  } else {
+    st.s = {s_scale * u(rng), s_scale * u(rng), s_scale * u(rng), s_scale * u(rng), s_scale * u(rng)};
+    st.alpha = {1e7 * u(rng), 1e7 * u(rng), 1e7 * u(rng), 1e7 * u(rng), 1e7 * u(rng)};
+  }
+  st.eps_p = 0.1 * (u(rng) + 1.0);
+  st.E_stored = 1e4 * (u(rng) + 1.0);
+  st.plastic_heat = 1e4 * (u(rng) + 1.0);
+  if (u(rng) > 0.0) st.volume_rate = 1e8 * u(rng);  // smoothed, else tr L (NaN)
+  return st;
+}
+
+// Lane l of a Lanes-form field (a struct of Lanes) as its double form.
+template <class Scalar, class Vector>
+Scalar lane_of(const Vector& v, int l) {
+  constexpr std::size_t n = sizeof(Scalar) / sizeof(double);
+  Lanes parts[n];
+  std::memcpy(parts, static_cast<const void*>(&v), sizeof parts);
+  double out[n];
+  for (std::size_t k = 0; k < n; ++k) out[k] = parts[k][l];
+  Scalar s;
+  std::memcpy(static_cast<void*>(&s), out, sizeof s);
+  return s;
+}
+template <class Scalar, class Vector>
+void set_lane(Vector& v, int l, const Scalar& s) {
+  constexpr std::size_t n = sizeof(Scalar) / sizeof(double);
+  Lanes parts[n];
+  std::memcpy(parts, static_cast<const void*>(&v), sizeof parts);
+  double in[n];
+  std::memcpy(in, static_cast<const void*>(&s), sizeof in);
+  for (std::size_t k = 0; k < n; ++k) parts[k][l] = in[k];
+  std::memcpy(static_cast<void*>(&v), parts, sizeof parts);
+}
+
+template <int D>
+PointState<D, Lanes> pack(const PointState<D> (&pts)[4]) {
+  PointState<D, Lanes> st;
+  for (int l = 0; l < 4; ++l) {
+    set_lane(st.L, l, pts[l].L);
+    set_lane(st.F, l, pts[l].F);
+    set_lane(st.s, l, pts[l].s);
+    set_lane(st.alpha, l, pts[l].alpha);
+    st.work[l] = pts[l].work;
+    st.E[l] = pts[l].E;
+    st.P[l] = pts[l].P;
+    st.q[l] = pts[l].q;
+    st.eps_p[l] = pts[l].eps_p;
+    st.E_stored[l] = pts[l].E_stored;
+    st.plastic_heat[l] = pts[l].plastic_heat;
+    st.volume_rate[l] = pts[l].volume_rate;
+  }
+  return st;
+}
+
+template <int D>
+PointState<D> unpack(const PointState<D, Lanes>& st, int l) {
+  PointState<D> p{};
+  p.L = lane_of<Mat<D>>(st.L, l);
+  p.F = lane_of<Mat<D>>(st.F, l);
+  p.s = lane_of<Deviator<D>>(st.s, l);
+  p.alpha = lane_of<Deviator<D>>(st.alpha, l);
+  p.work = st.work[l];
+  p.E = st.E[l];
+  p.P = st.P[l];
+  p.q = st.q[l];
+  p.eps_p = st.eps_p[l];
+  p.E_stored = st.E_stored[l];
+  p.plastic_heat = st.plastic_heat[l];
+  p.work_mismatch = st.work_mismatch[l];
+  return p;
+}
+
+bool same_bits(const void* a, const void* b, std::size_t n) { return std::memcmp(a, b, n) == 0; }
+
+// Within a few ulp of the scalar value, in units of the field's scale.
+void check_close(double lanes, double scalar, double scale, const char* what) {
+  if (!(std::abs(lanes - scalar) <= 1e-12 * scale) && !(lanes == scalar)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%s: lanes %.17g, alone %.17g", what, lanes, scalar);
+    check::fail(__FILE__, __LINE__, buf);
+  }
+}
+
+template <int D, class Strength, class Viscosity>
+void compare(const MieGruneisen& eos, const Strength& strength, const Viscosity& viscosity, std::mt19937_64& rng,
+             int groups) {
+  const PointStepConstants model{kH, kDt, 0.9, 1e5, 0.0};
+  int bad_seen = 0, yielded = 0, expanded = 0;
+  for (int g = 0; g < groups; ++g) {
+    PointState<D> alone[4];
+    for (auto& p : alone) p = random_state<D>(rng);
+    PointState<D, Lanes> four = pack(alone);
+    Vec<D, Lanes> v{};
+    LaneSignals signals;
+    step_lanes<D>(four, v, eos, strength, viscosity, model, signals);
+    for (int l = 0; l < 4; ++l) {
+      PointState<D> st = alone[l];
+      const double eps_before = st.eps_p;
+      expanded += det(st.F) > 1.0;
+      const double signal = update_point<D>(st, eos, strength, viscosity, kH, kDt, NoFailure{}, 0.9);
+      const PointState<D> got = unpack(four, l);
+      CHECK((signal < 0.0) == (signals.bad[l] != 0));
+      if (signal < 0.0) {
+        ++bad_seen;
+        continue;  // a double stops at once; the lanes finish the step (the run stops either way)
+      }
+      yielded += st.eps_p > eps_before;
+      check_close(signals.sound[l], signal, signal, "signal speed");
+      for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j) check_close(got.F(i, j), st.F(i, j), 1.0, "F");
+      check_close(got.E, st.E, std::abs(st.E) + 1e3, "E");
+      check_close(got.P, st.P, std::abs(st.P) + 1e6, "P");
+      check_close(got.q, st.q, std::abs(st.q) + 1e6, "q");
+      check_close(got.s.xx, st.s.xx, 1e9, "s_xx");
+      check_close(got.s.xy, st.s.xy, 1e9, "s_xy");
+      check_close(got.alpha.yy, st.alpha.yy, 1e9, "alpha_yy");
+      check_close(got.eps_p, st.eps_p, 1.0, "eps_p");
+      check_close(got.E_stored, st.E_stored, std::abs(st.E_stored) + 1e3, "E_stored");
+      check_close(got.plastic_heat, st.plastic_heat, std::abs(st.plastic_heat) + 1e3, "plastic_heat");
+      check_close(got.work_mismatch, st.work_mismatch, 1e3, "work_mismatch");
+    }
+  }
+  // The random states reach every branch.
+  CHECK(bad_seen > 0);
+  CHECK(expanded > 0);
+  if constexpr (Strength::has_stress) CHECK(yielded > 0);
+}
+
+// A point in lane k beside others gives the bits it gives in every lane alone.
+template <int D, class Strength>
+void lane_independence(const MieGruneisen& eos, const Strength& strength, std::mt19937_64& rng, int groups) {
+  const PointStepConstants model{kH, kDt, 0.9, 1e5, 0.0};
+  const ArtificialViscosity viscosity{0.6, 2.0};
+  for (int g = 0; g < groups; ++g) {
+    PointState<D> pts[4];
+    for (auto& p : pts) p = random_state<D>(rng);
+    PointState<D, Lanes> four = pack(pts);
+    const Vec<D, Lanes> v{};
+    LaneSignals together;
+    step_lanes<D>(four, v, eos, strength, viscosity, model, together);
+    for (int l = 0; l < 4; ++l) {
+      PointState<D> same[4] = {pts[l], pts[l], pts[l], pts[l]};
+      PointState<D, Lanes> alone = pack(same);
+      LaneSignals by_itself;
+      step_lanes<D>(alone, v, eos, strength, viscosity, model, by_itself);
+      const PointState<D> a = unpack(four, l), b = unpack(alone, (l + 1) % 4);
+      CHECK(same_bits(&a.F, &b.F, sizeof a.F) && same_bits(&a.s, &b.s, sizeof a.s));
+      CHECK(same_bits(&a.E, &b.E, sizeof a.E) && same_bits(&a.P, &b.P, sizeof a.P) && same_bits(&a.q, &b.q, sizeof a.q));
+      CHECK(same_bits(&a.eps_p, &b.eps_p, sizeof a.eps_p) &&
+            same_bits(&a.work_mismatch, &b.work_mismatch, sizeof a.work_mismatch));
+      const double s1 = together.sound[l], s2 = by_itself.sound[(l + 1) % 4];
+      CHECK(same_bits(&s1, &s2, sizeof s1));
+    }
+  }
+}
+
+template <int D>
+void run_all(std::mt19937_64& rng) {
+  for (const bool rose : {false, true}) {
+    Material al;
+    al.bound_expansion = rose;
+    const MieGruneisen eos(al);
+    compare<D>(eos, NoStrength{}, NoViscosity{}, rng, 300);
+    compare<D>(eos, NoStrength{}, ArtificialViscosity{0.2, 2.0}, rng, 300);
+    compare<D>(eos, VonMises<false>(al), ArtificialViscosity{0.6, 2.0}, rng, 300);
+    Material mixed = al;
+    mixed.hardening_beta = 0.5;
+    compare<D>(eos, VonMises<true>(mixed), ArtificialViscosity{0.6, 2.0}, rng, 300);
+    lane_independence<D>(eos, VonMises<false>(al), rng, 200);
+    lane_independence<D>(eos, VonMises<true>(mixed), rng, 200);
+  }
+}
+
+}  // namespace
+
+int main() {
+  std::mt19937_64 rng(20261206);
+  run_all<2>(rng);
+  run_all<3>(rng);
+  return check::result();
+}
