@@ -8,11 +8,15 @@
 // The states are random: compressed and expanded (Rose's bound curve and the linear branch),
 // elastic and yielding, with and without back stress, viscosity and volumetric smoothing, in 2D
 // and 3D, and a few not physical (J past the equation of state's limit, an infinite energy).
+//   3. The heat flux's lane functions: exp and expm1 (number.hpp) within 1 and 4 ulp of libm's
+//      over their whole range, with its special values; the energy model's temperature in lanes
+//      (temperature.hpp) against the double one, across the table, in tension and past the limit.
 #include <cstring>
 #include <random>
 
 #include "check.hpp"
 #include "mpmshock/constitutive.hpp"
+#include "mpmshock/temperature.hpp"
 #include "mpmshock/von_mises.hpp"
 
 using namespace mpmshock;
@@ -215,11 +219,80 @@ void run_all(std::mt19937_64& rng) {
   }
 }
 
+// |a - b| in units in the last place of b.
+double ulps(double a, double b) {
+  if (a == b) return 0.0;
+  return std::abs(a - b) / (std::nextafter(std::abs(b), INFINITY) - std::abs(b));
+}
+
+void exponentials(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double worst_exp = 0.0, worst_expm1 = 0.0;
+  for (int i = 0; i < 400000; ++i) {
+    double x;
+    switch (i % 4) {
+      case 0: x = 745.0 * u(rng); break;
+      case 1: x = 2.0 * u(rng); break;
+      case 2: x = 1e-3 * u(rng); break;
+      default: x = std::ldexp(u(rng), -static_cast<int>(rng() % 1000));
+    }
+    const Lanes v{x, -x, 0.5 * x, 2.0 * x};
+    const Lanes e = exponential(v), m = exponential_minus_one(v);
+    for (int l = 0; l < 4; ++l) {
+      if (std::exp(v[l]) > std::numeric_limits<double>::min()) worst_exp = std::max(worst_exp, ulps(e[l], std::exp(v[l])));
+      worst_expm1 = std::max(worst_expm1, ulps(m[l], std::expm1(v[l])));
+    }
+  }
+  std::printf("exp within %.1f ulp of libm's, expm1 within %.1f\n", worst_exp, worst_expm1);
+  CHECK(worst_exp <= 1.0);
+  CHECK(worst_expm1 <= 4.0);
+  const double inf = std::numeric_limits<double>::infinity();
+  const Lanes special{0.0, -inf, inf, std::nan("")}, tiny{1e-300, -1e-300, -745.1, 709.8};
+  const Lanes e = exponential(special), m = exponential_minus_one(special);
+  CHECK(e[0] == 1.0 && e[1] == 0.0 && e[2] == inf && std::isnan(e[3]));
+  CHECK(m[0] == 0.0 && m[1] == -1.0 && m[2] == inf && std::isnan(m[3]));
+  const Lanes et = exponential(tiny), mt = exponential_minus_one(tiny);
+  CHECK(mt[0] == 1e-300 && mt[1] == -1e-300 && et[2] == std::exp(-745.1) && et[3] == inf);
+}
+
+void temperatures(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Material al;
+  const HugoniotTemperature model(al);
+  const MieGruneisen eos(al);
+  CHECK(model.in_lanes());
+  const double J_min = model.min_tabulated_J();
+  int tension = 0, table = 0, refused = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Lanes J, E, T;
+    for (int l = 0; l < 4; ++l) {
+      const double kind = u(rng);
+      J[l] = kind < 0.1 ? J_min * u(rng) : (kind < 0.4 ? 1.0 + 2.0 * u(rng) : J_min + (1.0 - J_min) * u(rng));
+      if (kind > 0.98) J[l] = kind > 0.99 ? 1.0 : J_min;
+      E[l] = eos.hugoniot_energy(std::max(J[l], J_min)) + 1e6 * u(rng);
+    }
+    model.temperature_lanes(T, J, E);
+    for (int l = 0; l < 4; ++l) {
+      const double alone = model.temperature(J[l], E[l]);
+      if (!(J[l] >= J_min)) {
+        ++refused;
+        CHECK(T[l] == alone);  // infinite: refused, as alone
+      } else {
+        (J[l] >= 1.0 ? tension : table) += 1;
+        CHECK_REL(T[l], alone, 1e-13);
+      }
+    }
+  }
+  CHECK(tension > 0 && table > 0 && refused > 0);
+}
+
 }  // namespace
 
 int main() {
   std::mt19937_64 rng(20261206);
   run_all<2>(rng);
   run_all<3>(rng);
+  exponentials(rng);
+  temperatures(rng);
   return check::result();
 }

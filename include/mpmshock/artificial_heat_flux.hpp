@@ -32,6 +32,7 @@
 
 #include "mpmshock/grid.hpp"
 #include "mpmshock/halo.hpp"
+#include "mpmshock/lanes.hpp"
 #include "mpmshock/node_rows.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
@@ -49,9 +50,88 @@ struct ArtificialHeatFlux {
   std::array<double, kBodies> specific_heat{};  // c_v by body
   std::array<double, kBodies> sound_speed{};    // c0 by body, the scale of the viscous pressure
   bool one_material = true;               // C_p = m_p, C_i = m_i
+  std::vector<double> point_rate;                   // r_p, by point (the step's scratch)
   std::vector<double> node_rate, node_temperature;  // C_i r_i and C_i T_i, then r_i and T_i
   std::vector<double> node_capacity;                // C_i, with two materials
 };
+
+// The exponent of a point's rate, r_p = 1 - exp(x) = -expm1(x), x = -pi^2 dt alpha_p / h^2, from its
+// viscous pressure q, density rho and its material's c0 (a double, or four points' Lanes).
+template <class T>
+T rate_exponent(const ArtificialHeatFlux& flux, const T& q, const T& rho, double c0, double pi2_dt_over_h2) {
+  const T alpha = flux.beta * flux.cell_size * q / (rho * c0);
+  return -alpha * pi2_dt_over_h2;
+}
+
+// Four points' temperatures (the energy model's) and rates, from F, the thermal energy, the failure
+// J (0: intact), m, V0 and q: one non-inlined body whichever way the lanes were filled, so that a
+// point gives the same bits in any group (constitutive.hpp's step_lanes says why).
+template <int D>
+[[gnu::noinline]] void heat_flux_lanes(const HugoniotTemperature& model, const ArtificialHeatFlux& flux, double c0,
+                                       double pi2_dt_over_h2, const Mat<D, Lanes>& F, const Lanes& E_thermal,
+                                       const Lanes& failure_J, const Lanes& m, const Lanes& V0, const Lanes& q,
+                                       Lanes& T, Lanes& r) {
+  const Lanes J = det(F);
+  const Lanes J_material = failure_J > 0.0 ? minimum(J, failure_J) : J;  // Particles::material_J
+  model.temperature_lanes(T, J_material, E_thermal);
+  const Lanes x = rate_exponent(flux, q, m / (V0 * J_material), c0, pi2_dt_over_h2);
+  r = q != 0.0 ? -exponential_minus_one(x) : Lanes{};
+}
+
+// Points p..p+3 (kFour: of one body) or p alone: T_p into `work`, r_p into flux.point_rate.
+template <bool kFour, int D>
+[[gnu::always_inline]] inline void heat_flux_four(Particles<D>& pts, std::size_t p, const HugoniotTemperature& model,
+                                                  ArtificialHeatFlux& flux, double c0, double pi2_dt_over_h2) {
+  Mat<D, Lanes> F;
+  Lanes E, E_stored{}, failure_J{}, m, V0, q, T, r;
+  load_points<kFour>(F, &pts.F[p]);
+  load_points<kFour>(E, &pts.E[p]);
+  if (pts.stores_cold_work()) load_points<kFour>(E_stored, &pts.E_stored[p]);
+  if (pts.has_failure()) load_points<kFour>(failure_J, &pts.failure_J[p]);
+  load_points<kFour>(m, &pts.m[p]);
+  load_points<kFour>(V0, &pts.V0[p]);
+  load_points<kFour>(q, &pts.q[p]);
+  const Lanes E_thermal = pts.stores_cold_work() ? E - E_stored : E;  // Particles::thermal_energy
+  heat_flux_lanes<D>(model, flux, c0, pi2_dt_over_h2, F, E_thermal, failure_J, m, V0, q, T, r);
+  store_points<kFour>(&pts.work[p], T);
+  store_points<kFour>(&flux.point_rate[p], r);
+}
+
+// Every point's temperature T_p (into pts.work, the step's scratch) and rate r_p (flux.point_rate):
+// four points at a time where every body's temperature may be (temperature.hpp), else one by one.
+// A point that does not compress (q = 0: at rest, or expanding) has rate 0 exactly.
+template <int D>
+void point_temperatures_and_rates(Particles<D>& pts, PointRange range, const BodyTemperatures& thermal,
+                                  ArtificialHeatFlux& flux, double pi2_dt_over_h2) {
+  if (flux.point_rate.size() < pts.size()) flux.point_rate.resize(pts.size());
+  if (thermal.in_lanes()) {
+    const std::size_t groups = (range.end - range.begin + 3) / 4;
+#pragma omp parallel for schedule(dynamic, kChunk / 4)
+    for (std::size_t g = 0; g < groups; ++g) {
+      const std::size_t p = range.begin + 4 * g, n = std::min<std::size_t>(4, range.end - p);
+      bool one_body = n == 4;
+      for (std::size_t l = 1; l < n; ++l) one_body = one_body && pts.body[p + l] == pts.body[p];
+      if (one_body) {
+        const auto b = static_cast<std::size_t>(pts.body[p]);
+        heat_flux_four<true>(pts, p, thermal.of_body(pts.body[p]), flux, flux.sound_speed[b], pi2_dt_over_h2);
+      } else {
+        for (std::size_t q = p; q < p + n; ++q)
+          heat_flux_four<false>(pts, q, thermal.of_body(pts.body[q]), flux,
+                                flux.sound_speed[static_cast<std::size_t>(pts.body[q])], pi2_dt_over_h2);
+      }
+    }
+    return;
+  }
+#pragma omp parallel for schedule(dynamic, kChunk)
+  for (std::size_t p = range.begin; p < range.end; ++p) {
+    pts.work[p] = thermal.energy_temperature(pts, p);
+    const double q = pts.q[p];
+    flux.point_rate[p] =
+        q != 0.0 ? -std::expm1(rate_exponent(flux, q, pts.density(p), flux.sound_speed[static_cast<std::size_t>(pts.body[p])],
+                                             pi2_dt_over_h2))
+                 : 0.0;
+  }
+}
 
 template <int D, class Shape>
 void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
@@ -79,24 +159,18 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
   // The step's scratch holds T_p (written again by the velocity gradient later in the step).
   std::vector<double>& T = pts.work;
   const double pi2_dt_over_h2 = M_PI * M_PI * dt / (flux.cell_size * flux.cell_size);
+  point_temperatures_and_rates(pts, range, thermal, flux, pi2_dt_over_h2);
   // 1. scattered with the heat capacities where the bodies differ (a choice made once, not per node).
   auto scatter = [&](auto materials) {
     constexpr bool several = decltype(materials)::value;
     bins.scatter([&](std::size_t p) {
       const auto b = static_cast<std::size_t>(pts.body[p]);
-      T[p] = thermal.energy_temperature(pts, p);
-      // A point that does not compress (q = 0: at rest, or expanding) has rate 0 exactly, and adding
-      // N * 0 to a nodal rate changes no bit, so it adds its temperature (and capacity) alone. Points
-      // in uniform motion are not among them: round-off in their nodal velocities leaves tiny
-      // compression rates (67-84 % of the points of a solid 2D impact had q != 0, r down to 1e-17),
-      // so a pass over only the compressing points would not save work (tried 2026-12-06: more
-      // instructions).
-      const double q = pts.q[p];
-      double r = 0.0;
-      if (q != 0.0) {
-        const double alpha = flux.beta * flux.cell_size * q / (pts.density(p) * flux.sound_speed[b]);
-        r = -std::expm1(-alpha * pi2_dt_over_h2);
-      }
+      // A point that does not compress has rate 0, and adding N * 0 to a nodal rate changes no bit,
+      // so it adds its temperature (and capacity) alone. Points in uniform motion are not among
+      // them: round-off in their nodal velocities leaves tiny compression rates (67-84 % of the
+      // points of a solid 2D impact had q != 0, r down to 1e-17), so a pass over only the
+      // compressing points would not save work (tried 2026-12-06: more instructions).
+      const double r = flux.point_rate[p];
       // A point in a bad state (a NaN the step will report) gives its nodes nothing, so the report
       // names it and not its neighbours.
       if (!std::isfinite(T[p]) || !(r >= 0.0)) return;

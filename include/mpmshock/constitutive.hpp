@@ -158,49 +158,6 @@ struct InLanes : std::false_type {};
 template <class Law>
 struct InLanes<Law, std::void_t<decltype(Law::in_lanes)>> : std::bool_constant<Law::in_lanes> {};
 
-// A per-point field as four lanes: points p..p+3 (kFour) or point p in every lane; and back.
-// Scalar is a double or a struct of n doubles (Mat, Deviator), Vector its Lanes form: component
-// k of the four points in lane order. Whole blocks of four components move as 4 x 4 transposes.
-template <bool kFour, class Scalar, class Vector>
-[[gnu::always_inline]] inline void load_points(Vector& out, const Scalar* at) {
-  constexpr std::size_t n = sizeof(Scalar) / sizeof(double);
-  static_assert(sizeof(Vector) == n * sizeof(Lanes), "a field's Lanes form holds four of its doubles each");
-  const auto* d = reinterpret_cast<const double*>(at);
-  Lanes v[n];
-  std::size_t k = 0;
-  if constexpr (kFour) {
-    for (; k + 4 <= n; k += 4) {
-      Lanes block[4];
-      for (std::size_t l = 0; l < 4; ++l) load_lanes(block[l], d + l * n + k);
-      transpose_lanes(block);
-      for (std::size_t c = 0; c < 4; ++c) v[k + c] = block[c];
-    }
-    for (; k < n; ++k) v[k] = Lanes{d[k], d[n + k], d[2 * n + k], d[3 * n + k]};
-  } else {
-    for (; k < n; ++k) v[k] = Lanes{} + d[k];
-  }
-  std::memcpy(static_cast<void*>(&out), v, sizeof v);
-}
-template <bool kFour, class Scalar, class Vector>
-[[gnu::always_inline]] inline void store_points(Scalar* at, const Vector& from) {
-  constexpr std::size_t n = sizeof(Scalar) / sizeof(double);
-  auto* d = reinterpret_cast<double*>(at);
-  Lanes v[n];
-  std::memcpy(v, static_cast<const void*>(&from), sizeof v);
-  std::size_t k = 0;
-  if constexpr (kFour) {
-    for (; k + 4 <= n; k += 4) {
-      Lanes block[4] = {v[k], v[k + 1], v[k + 2], v[k + 3]};
-      transpose_lanes(block);
-      for (std::size_t l = 0; l < 4; ++l) store_lanes(d + l * n + k, block[l]);
-    }
-    for (; k < n; ++k)
-      for (std::size_t l = 0; l < 4; ++l) d[l * n + k] = v[k][l];
-  } else {
-    for (; k < n; ++k) d[k] = v[k][0];
-  }
-}
-
 // The arithmetic of four lanes' step: the point update, then each lane's speed check and its
 // candidates for the largest signal speed. Not inlined, so that it is one body of instructions
 // whichever way its lanes were filled: the compiler may contract a*b + c into an FMA differently in

@@ -72,7 +72,8 @@ class MieGruneisen {
   double hugoniot_pressure_slope(double J) const { return hugoniot(J).slope; }
 
   // The reference energy E_r: E_H = eta P_H / (2 rho0) in compression, Rose's in expansion.
-  double hugoniot_energy(double J) const { return hugoniot(J).energy; }
+  template <class T>
+  T hugoniot_energy(const T& J) const { return hugoniot(J).energy; }
 
   // (dP/dE)_V = gamma(V)/V = gamma0 rho0, constant because gamma*rho is.
   double gamma_rho() const { return gamma0_ * rho0_; }

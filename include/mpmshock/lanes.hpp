@@ -2,12 +2,14 @@
 // x86-64 build), with the GCC/Clang vector extensions (g++ 12 or newer for __builtin_shufflevector;
 // CMakeLists.txt checks): arithmetic, comparisons and ?: act lane by lane, so a formula written once
 // computes four independent values, each exactly as it would alone. Used for a stencil row's four
-// nodes (node_rows.hpp) and four points' stencil weights (shape.hpp).
+// nodes (node_rows.hpp), four points' stencil weights (shape.hpp) and four points' states in the
+// point update (constitutive.hpp) and the heat flux (artificial_heat_flux.hpp).
 //
 // Without AVX each vector is two SSE2 halves; helpers take and give vectors by reference, since by
 // value their ABI would change with AVX (GCC's -Wpsabi note).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -77,6 +79,49 @@ template <class V>
   v[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
   v[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
   v[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+// A per-point field as four lanes (a point's values in a struct of arrays, Particles): points p..p+3 (kFour) or point p in every lane; and back.
+// Scalar is a double or a struct of n doubles (Mat, Deviator), Vector its Lanes form: component
+// k of the four points in lane order. Whole blocks of four components move as 4 x 4 transposes.
+template <bool kFour, class Scalar, class Vector>
+[[gnu::always_inline]] inline void load_points(Vector& out, const Scalar* at) {
+  constexpr std::size_t n = sizeof(Scalar) / sizeof(double);
+  static_assert(sizeof(Vector) == n * sizeof(Lanes), "a field's Lanes form holds four of its doubles each");
+  const auto* d = reinterpret_cast<const double*>(at);
+  Lanes v[n];
+  std::size_t k = 0;
+  if constexpr (kFour) {
+    for (; k + 4 <= n; k += 4) {
+      Lanes block[4];
+      for (std::size_t l = 0; l < 4; ++l) load_lanes(block[l], d + l * n + k);
+      transpose_lanes(block);
+      for (std::size_t c = 0; c < 4; ++c) v[k + c] = block[c];
+    }
+    for (; k < n; ++k) v[k] = Lanes{d[k], d[n + k], d[2 * n + k], d[3 * n + k]};
+  } else {
+    for (; k < n; ++k) v[k] = Lanes{} + d[k];
+  }
+  std::memcpy(static_cast<void*>(&out), v, sizeof v);
+}
+template <bool kFour, class Scalar, class Vector>
+[[gnu::always_inline]] inline void store_points(Scalar* at, const Vector& from) {
+  constexpr std::size_t n = sizeof(Scalar) / sizeof(double);
+  auto* d = reinterpret_cast<double*>(at);
+  Lanes v[n];
+  std::memcpy(v, static_cast<const void*>(&from), sizeof v);
+  std::size_t k = 0;
+  if constexpr (kFour) {
+    for (; k + 4 <= n; k += 4) {
+      Lanes block[4] = {v[k], v[k + 1], v[k + 2], v[k + 3]};
+      transpose_lanes(block);
+      for (std::size_t l = 0; l < 4; ++l) store_lanes(d + l * n + k, block[l]);
+    }
+    for (; k < n; ++k)
+      for (std::size_t l = 0; l < 4; ++l) d[l * n + k] = v[k][l];
+  } else {
+    for (; k < n; ++k) d[k] = v[k][0];
+  }
 }
 
 }  // namespace mpmshock

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "mpmshock/lanes.hpp"
@@ -58,6 +59,65 @@ inline bool finite(double x) { return std::isfinite(x); }
   Lanes magnitude;
   abs_lanes(magnitude, x);
   return magnitude <= std::numeric_limits<double>::max();
+}
+
+// exp and expm1 lane by lane, to within a few ulp of libm's (not its bits: a lane's value is the
+// same whatever the other lanes hold, which is what the kernels need). exp(x) = 2^n exp(r) with
+// x = n ln 2 + r, |r| <= ln 2 / 2 (Cody and Waite's two-part ln 2, so n ln 2 is exact), exp(r) by
+// its Taylor series to r^13 (the next term is below 2e-17 of the sum), 2^n as two powers of two so
+// that results down to the subnormals and up to overflow come out. expm1(x) by its own series to
+// x^14 where |x| <= ln 2 / 2 (no cancellation near 0), else exp(x) - 1 (at least 0.29 in size).
+// exp(0) = 1 and expm1(0) = 0 exactly; NaN gives NaN, -inf 0 (expm1: -1), +inf inf.
+[[gnu::always_inline]] inline void exp_lanes(Lanes& out, const Lanes& x) {
+  const Lanes held = x < -746.0 ? Lanes{} - 746.0 : (x > 710.0 ? Lanes{} + 710.0 : x);  // NaN kept
+  LaneInts n;
+  floor_lanes(n, held * 1.4426950408889634 + 0.5);  // nearest n = x / ln 2 (NaN: any n, replaced below)
+  const Lanes nd = __builtin_convertvector(n, Lanes);
+  const Lanes r = (held - nd * 6.93147180369123816490e-01) - nd * 1.90821492927058770002e-10;
+  constexpr double kInverseFactorial[14] = {1.0,
+                                            1.0,
+                                            1.0 / 2,
+                                            1.0 / 6,
+                                            1.0 / 24,
+                                            1.0 / 120,
+                                            1.0 / 720,
+                                            1.0 / 5040,
+                                            1.0 / 40320,
+                                            1.0 / 362880,
+                                            1.0 / 3628800,
+                                            1.0 / 39916800,
+                                            1.0 / 479001600,
+                                            1.0 / 6227020800};
+  Lanes p = Lanes{} + kInverseFactorial[13];
+  for (int k = 12; k >= 0; --k) p = p * r + kInverseFactorial[k];
+  typedef std::int64_t Wide __attribute__((vector_size(32)));
+  const Wide half = __builtin_convertvector(n >> 1, Wide), rest = __builtin_convertvector(n - (n >> 1), Wide);
+  const Lanes scale_a = reinterpret_cast<Lanes>((half + 1023) << 52);
+  const Lanes scale_b = reinterpret_cast<Lanes>((rest + 1023) << 52);
+  const Lanes e = p * scale_a * scale_b;
+  out = x > 709.782712893384 ? Lanes{} + std::numeric_limits<double>::infinity() : e;
+  out = x != x ? x : out;
+}
+inline double exponential(double x) { return std::exp(x); }
+[[gnu::always_inline]] inline Lanes exponential(const Lanes& x) {
+  Lanes e;
+  exp_lanes(e, x);
+  return e;
+}
+inline double exponential_minus_one(double x) { return std::expm1(x); }
+[[gnu::always_inline]] inline Lanes exponential_minus_one(const Lanes& x) {
+  constexpr double kInverseFactorial[15] = {1.0,           1.0,            1.0 / 2,           1.0 / 6,
+                                            1.0 / 24,      1.0 / 120,      1.0 / 720,         1.0 / 5040,
+                                            1.0 / 40320,   1.0 / 362880,   1.0 / 3628800,     1.0 / 39916800,
+                                            1.0 / 479001600, 1.0 / 6227020800, 1.0 / 87178291200};
+  Lanes p = Lanes{} + kInverseFactorial[14];
+  for (int k = 13; k >= 2; --k) p = p * x + kInverseFactorial[k];
+  const Lanes series = x + x * (x * p);  // x + x^2/2 + ... + x^14/14!
+  Lanes e;
+  exp_lanes(e, x);
+  Lanes magnitude;
+  abs_lanes(magnitude, x);
+  return magnitude <= 0.34657359027997264 ? (x == 0.0 ? x : series) : e - 1.0;  // -0 stays -0
 }
 
 }  // namespace mpmshock

@@ -22,9 +22,11 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "mpmshock/eos.hpp"
+#include "mpmshock/number.hpp"
 #include "mpmshock/material.hpp"
 #include "mpmshock/particles.hpp"
 #include "mpmshock/scene.hpp"
@@ -59,6 +61,26 @@ class HugoniotTemperature {
       if (T > T_m) return T_m + std::max(0.0, (T - T_m) * cv_ - latent_heat_) / cv_;
     }
     return T;
+  }
+
+  // The same, four points at a time (Lanes, number.hpp), where the reference curve is the
+  // Hugoniot's table and there is no latent heat (in_lanes()): each lane what temperature(J, E)
+  // gives it, to within a few ulp (the tension branch's exponential is number.hpp's, not libm's).
+  bool in_lanes() const { return isentrope_.empty() && latent_heat_ == 0.0; }
+  void temperature_lanes(Lanes& T, const Lanes& J, const Lanes& E) const {
+    // The table between J_min and 1 (hugoniot_temperature): the interval k = floor(u) of each
+    // lane, held within the table for the lanes that take another branch.
+    const Lanes u = (1.0 - J) / dJ_;
+    const double last = static_cast<double>(table_.size() - 2);
+    const Lanes held = u >= 0.0 ? (u <= last ? u : Lanes{} + last) : Lanes{};  // NaN: 0
+    const LaneInts k = __builtin_convertvector(held, LaneInts);
+    const Lanes below{table_[k[0]], table_[k[1]], table_[k[2]], table_[k[3]]};
+    const Lanes above{table_[k[0] + 1], table_[k[1] + 1], table_[k[2] + 1], table_[k[3] + 1]};
+    const Lanes frac = u - __builtin_convertvector(k, Lanes);
+    Lanes T_H = u < last + 1.0 ? below + frac * (above - below) : Lanes{} + table_.back();
+    T_H = J >= J_min_ ? T_H : Lanes{} + std::numeric_limits<double>::infinity();
+    T_H = J >= 1.0 ? T0_ * exponential(gamma0_ * (1.0 - J)) : T_H;
+    T = T_H + (E - eos_.hugoniot_energy(J)) / cv_;
   }
 
   // Melting: the melt curve and the latent heat L [J/kg] (0: none, the default).
@@ -152,6 +174,10 @@ class BodyTemperatures {
   template <int D>
   double energy_temperature(const Particles<D>& p, std::size_t q) const {
     return of_body(p.body[q]).temperature(p.material_J(q), p.thermal_energy(q));
+  }
+  // Whether every body's energy-model temperature may be computed four points at a time.
+  bool in_lanes() const {
+    return by_body_[0].in_lanes() && by_body_[1].in_lanes() && by_body_[2].in_lanes();
   }
   bool reports_paper_temperature() const { return by_body_[0].reports_paper_temperature(); }
   template <int D>
