@@ -151,8 +151,40 @@ void many_terms_carry() {
 
 }  // namespace
 
+// Four terms at a time (add_lanes, the point update's) hold the very digits one at a time give,
+// for wild terms, zeros of both signs, subnormals, NaN and infinities, and groups of 1 to 4.
+void lanes_as_one_at_a_time() {
+  std::mt19937_64 rng(11);
+  std::vector<double> terms = wild_terms(rng, 4000);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < terms.size(); k += 97) terms[k] = 0.0;
+  for (std::size_t k = 5; k < terms.size(); k += 101) terms[k] = -0.0;
+  terms[7] = inf, terms[8] = -inf, terms[9] = std::nan("");
+  ExactSum one, four;
+  std::size_t k = 0;
+  for (int group = 0; k < terms.size(); ++group) {
+    const int count = std::min<int>(1 + group % 4, static_cast<int>(terms.size() - k));
+    mpmshock::Lanes x{};
+    for (int l = 0; l < count; ++l) x[l] = terms[k + static_cast<std::size_t>(l)];
+    for (int l = count; l < 4; ++l) x[l] = 1e300;  // beyond count: never added
+    four.add_lanes(x, count);
+    for (int l = 0; l < count; ++l) one.add(terms[k + static_cast<std::size_t>(l)]);
+    k += static_cast<std::size_t>(count);
+  }
+  CHECK(one.words() == four.words());
+  // Without the special values the totals compare as numbers too.
+  ExactSum a, b;
+  for (std::size_t j = 12; j + 4 <= terms.size(); j += 4) {
+    a.add_lanes(mpmshock::Lanes{terms[j], terms[j + 1], terms[j + 2], terms[j + 3]});
+    for (std::size_t l = 0; l < 4; ++l) b.add(terms[j + l]);
+  }
+  CHECK(same_bits(a.value(), b.value()));
+  CHECK(a.words() == b.words());
+}
+
 int main() {
   order_does_not_matter();
+  lanes_as_one_at_a_time();
   exact_where_doubles_are_not();
   rounded_once_to_nearest();
   nan_and_infinity_as_ieee();

@@ -228,10 +228,12 @@ template <bool kFour, int D, class Eos, class Strength, class Viscosity>
   largest = checks.sound > largest ? checks.sound : largest;
   largest = checks.volume > largest ? checks.volume : largest;
   max_signal = std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3]));
-  for (std::size_t l = 0; l < (kFour ? 4 : 1); ++l) {
-    mismatch.add(pts.m[p + l] * st.work_mismatch[l]);
-    if (checks.bad[l]) first_bad = std::min(first_bad, p + l);
-  }
+  Lanes m;
+  load_points<kFour>(m, &pts.m[p]);
+  mismatch.add_lanes(m * st.work_mismatch, kFour ? 4 : 1);
+  if (any(checks.bad))
+    for (std::size_t l = 0; l < (kFour ? 4 : 1); ++l)
+      if (checks.bad[l]) first_bad = std::min(first_bad, p + l);
 }
 
 // The update of every point, for one choice of laws: four points at a time where the laws are

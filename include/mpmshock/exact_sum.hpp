@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "mpmshock/lanes.hpp"
+
 namespace mpmshock {
 
 class ExactSum {
@@ -34,8 +36,7 @@ class ExactSum {
     if ((bits << 1) == 0) return;  // +-0, common (states at rest)
     const int exponent = static_cast<int>((bits >> 52) & 0x7ff);
     if (exponent == 0x7ff) {  // NaN or infinity
-      const bool nan = (bits & ((std::uint64_t{1} << 52) - 1)) != 0;
-      ++words_[nan ? kDigits : (bits >> 63 ? kDigits + 2 : kDigits + 1)];
+      count_special(bits);
       return;
     }
     // x = significand * 2^(offset - 1074), offset = max(exponent, 1) - 1 in [0, 2045]. Without
@@ -53,7 +54,40 @@ class ExactSum {
     words_[digit] += (low ^ negate) - negate;
     words_[digit + 1] += (mid ^ negate) - negate;
     words_[digit + 2] += (high ^ negate) - negate;
-    if (++additions_ == kAdditionsBeforeCarry) carry();
+    if (++additions_ >= kAdditionsBeforeCarry) carry();
+  }
+
+  // The first `count` lanes of x (four doubles, lanes.hpp), as that many add() calls give them:
+  // the digits and shifts of the four computed at once, each lane's three digits added apart.
+  void add_lanes(const Lanes& x, int count = 4) {
+    typedef std::uint64_t Bits __attribute__((vector_size(32)));
+    typedef std::int64_t Signed __attribute__((vector_size(32)));
+    const Bits bits = reinterpret_cast<Bits>(x);
+    const Bits mantissa = Bits{} + ((std::uint64_t{1} << 52) - 1);
+    const Signed exponent = reinterpret_cast<Signed>((bits >> 52) & 0x7ff);
+    const Signed normal = -(exponent != 0);  // 1 where normal (a comparison gives -1)
+    const Bits significand = (bits & mantissa) | (reinterpret_cast<Bits>(normal) << 52);
+    const Signed offset = exponent - normal;
+    const Signed digit = offset >> 5;
+    const Bits shift = reinterpret_cast<Bits>(offset & 31);
+    const Bits bits64 = significand << shift;
+    const Signed low = reinterpret_cast<Signed>(bits64 & 0xffffffffu), mid = reinterpret_cast<Signed>(bits64 >> 32);
+    const Signed high = reinterpret_cast<Signed>((significand >> 1) >> (63 - shift));
+    const Signed negate = -reinterpret_cast<Signed>(bits >> 63);
+    const Signed low_s = (low ^ negate) - negate, mid_s = (mid ^ negate) - negate, high_s = (high ^ negate) - negate;
+    for (int l = 0; l < count; ++l) {
+      if ((bits[l] << 1) == 0) continue;  // +-0
+      if (exponent[l] == 0x7ff) {  // NaN or infinity
+        count_special(bits[l]);
+        continue;
+      }
+      const auto d = static_cast<std::size_t>(digit[l]);
+      words_[d] += low_s[l];
+      words_[d + 1] += mid_s[l];
+      words_[d + 2] += high_s[l];
+    }
+    additions_ += count;
+    if (additions_ >= kAdditionsBeforeCarry) carry();
   }
 
   ExactSum& operator+=(const ExactSum& other) {
@@ -124,6 +158,11 @@ class ExactSum {
   }
 
  private:
+  // A NaN or an infinity (bits of exponent 0x7ff), counted apart.
+  void count_special(std::uint64_t bits) {
+    const bool nan = (bits & ((std::uint64_t{1} << 52) - 1)) != 0;
+    ++words_[nan ? kDigits : (bits >> 63 ? kDigits + 2 : kDigits + 1)];
+  }
   static constexpr int kAdditionsBeforeCarry = 1 << 30;
   std::array<std::int64_t, kWords> words_;
   int additions_ = 0;
