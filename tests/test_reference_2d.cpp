@@ -34,7 +34,7 @@
 // sums by at most 3e-15 relative, the step's scratch `work` by 6e-13, the clock's time by 1e-12),
 // "no_smoothing" in its clock alone, "every_effect" (spall and softening, still point by point)
 // bitwise unchanged, and when the heat flux began to compute its points' temperatures and rates
-// four at a time (2026-12-06, issue 32: number.hpp's exp and expm1, within 1 and 3 ulp of libm's):
+// four at a time (2026-12-06, issue 32: number.hpp's exp and expm1, within 1 and 4 ulp of libm's):
 // the four cases without spall moved (field sums by at most 5e-15 relative, the step's scratch
 // `work` by 2.3e-12, the clock's time by 3.5e-13), "every_effect" (melting: still point by point)
 // bitwise unchanged.

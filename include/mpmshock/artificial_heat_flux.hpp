@@ -64,10 +64,10 @@ T rate_exponent(const ArtificialHeatFlux& flux, const T& q, const T& rho, double
 }
 
 // Four points' temperatures (the energy model's) and rates, from F, the thermal energy, the failure
-// J (0: intact), m, V0 and q: one non-inlined body whichever way the lanes were filled, so that a
-// point gives the same bits in any group (constitutive.hpp's step_lanes says why).
+// J (0: intact), m, V0 and q: one body of instructions whichever way the lanes were filled, so that
+// a point gives the same bits in any group (MPMSHOCK_ONE_BODY, number.hpp).
 template <int D>
-[[gnu::noinline]] void heat_flux_lanes(const HugoniotTemperature& model, const ArtificialHeatFlux& flux, double c0,
+MPMSHOCK_ONE_BODY void heat_flux_lanes(const HugoniotTemperature& model, const ArtificialHeatFlux& flux, double c0,
                                        double pi2_dt_over_h2, const Mat<D, Lanes>& F, const Lanes& E_thermal,
                                        const Lanes& failure_J, const Lanes& m, const Lanes& V0, const Lanes& q,
                                        Lanes& T, Lanes& r) {

@@ -80,6 +80,10 @@ template <int D, class T, class Eos, class Strength, class Viscosity, class Fail
   const T volume_shift = (volume_rate - trace(st.L)) / static_cast<double>(D);  // 0 without smoothing
   const T J_before = det(st.F), pq_before = st.P + st.q;
   [[maybe_unused]] const Deviator<D, T> s_before = st.s;
+  [[maybe_unused]] const auto before = [&] {  // lanes: the state as it came, for the lanes that are not physical
+    if constexpr (lanes) return st;
+    else return 0;
+  }();
 
   // Energy: the exact work of the step's nodal forces on the point (compression, plastic and
   // viscous work alike), which is what the points' kinetic energy lost.
@@ -139,8 +143,23 @@ template <int D, class T, class Eos, class Strength, class Viscosity, class Fail
     const T Q = viscosity.signal(c_bulk, h, volume_rate);
     signal = Q + square_root(Q * Q + c2);
   }
-  if constexpr (lanes) return physical ? signal : constant<T>(-1.0);
-  else return signal;
+  if constexpr (lanes) {
+    // A lane whose state is not physical keeps what a double leaves when it returns early: past
+    // the limiting compression, all but E and F as they were; non-finite, q as it was. Its work
+    // mismatch is 0, as a double's. (The run stops at such a state either way.)
+    if (!any(!physical)) return signal;
+    st.P = admitted ? st.P : before.P;
+    st.q = physical ? st.q : before.q;
+    st.s = choose(admitted, st.s, before.s);
+    st.alpha = choose(admitted, st.alpha, before.alpha);
+    st.eps_p = admitted ? st.eps_p : before.eps_p;
+    st.E_stored = admitted ? st.E_stored : before.E_stored;
+    st.plastic_heat = admitted ? st.plastic_heat : before.plastic_heat;
+    st.work_mismatch = physical ? st.work_mismatch : T{};
+    return physical ? signal : constant<T>(-1.0);
+  } else {
+    return signal;
+  }
 }
 
 struct StressUpdateResult {
@@ -159,9 +178,8 @@ template <class Law>
 struct InLanes<Law, std::void_t<decltype(Law::in_lanes)>> : std::bool_constant<Law::in_lanes> {};
 
 // The arithmetic of four lanes' step: the point update, then each lane's speed check and its
-// candidates for the largest signal speed. Not inlined, so that it is one body of instructions
-// whichever way its lanes were filled: the compiler may contract a*b + c into an FMA differently in
-// each place a formula is inlined, and a point must give the same bits in a group of four as alone.
+// candidates for the largest signal speed. One body of instructions whichever way its lanes were
+// filled (MPMSHOCK_ONE_BODY, number.hpp).
 struct LaneSignals {
   Lanes sound, volume;  // |v| + the point's signal speed; volume_change_signal |tr D|
   LaneBits bad;         // a state that is not physical, or a runaway speed
@@ -173,7 +191,7 @@ struct PointStepConstants {
   double volume_change_signal;  // a volume change's signal speed per |tr D|
 };
 template <int D, class Eos, class Strength, class Viscosity>
-[[gnu::noinline]] void step_lanes(PointState<D, Lanes>& st, const Vec<D, Lanes>& v, const Eos& eos,
+MPMSHOCK_ONE_BODY void step_lanes(PointState<D, Lanes>& st, const Vec<D, Lanes>& v, const Eos& eos,
                                   const Strength& strength, const Viscosity& viscosity, const PointStepConstants& k,
                                   LaneSignals& out) {
   const Lanes signal = update_point<D>(st, eos, strength, viscosity, k.cell_size, k.dt, NoFailure{}, k.taylor_quinney);

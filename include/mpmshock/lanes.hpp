@@ -5,8 +5,10 @@
 // nodes (node_rows.hpp), four points' stencil weights (shape.hpp) and four points' states in the
 // point update (constitutive.hpp) and the heat flux (artificial_heat_flux.hpp).
 //
-// Without AVX each vector is two SSE2 halves; helpers take and give vectors by reference, since by
-// value their ABI would change with AVX (GCC's -Wpsabi note).
+// Without AVX each vector is two SSE2 halves. These helpers take and give vectors by reference;
+// the point update's formulas (number.hpp) pass them by value between inline functions of one
+// build, where GCC's -Wpsabi note (the calling convention differs with AVX) does not apply and is
+// turned off (src/CMakeLists.txt).
 #pragma once
 
 #include <cstddef>

@@ -19,6 +19,16 @@
 
 namespace mpmshock {
 
+// A function holding four lanes' arithmetic that must be one body of instructions wherever it is
+// called: the compiler may contract a*b + c into an FMA differently in each inlined or cloned
+// copy, and a point must give the same bits in a group of four as alone. GCC's noipa also rules
+// out clones specialised for a call site; Clang has no such cloning and knows only noinline.
+#if defined(__clang__)
+#define MPMSHOCK_ONE_BODY [[gnu::noinline]]
+#else
+#define MPMSHOCK_ONE_BODY [[gnu::noipa]]
+#endif
+
 // The condition type of a comparison: bool for a double, a lane mask for Lanes.
 inline bool any(bool m) { return m; }
 [[gnu::always_inline]] inline bool any(const LaneBits& m) { return ((m[0] | m[1]) | (m[2] | m[3])) != 0; }
@@ -61,7 +71,7 @@ inline bool finite(double x) { return std::isfinite(x); }
   return magnitude <= std::numeric_limits<double>::max();
 }
 
-// exp and expm1 lane by lane, to within a few ulp of libm's (not its bits: a lane's value is the
+// exp and expm1 lane by lane, within 1 and 4 ulp of libm's (not its bits: a lane's value is the
 // same whatever the other lanes hold, which is what the kernels need). exp(x) = 2^n exp(r) with
 // x = n ln 2 + r, |r| <= ln 2 / 2 (Cody and Waite's two-part ln 2, so n ln 2 is exact), exp(r) by
 // its Taylor series to r^13 (the next term is below 2e-17 of the sum), 2^n as two powers of two so
@@ -69,9 +79,10 @@ inline bool finite(double x) { return std::isfinite(x); }
 // x^14 where |x| <= ln 2 / 2 (no cancellation near 0), else exp(x) - 1 (at least 0.29 in size).
 // exp(0) = 1 and expm1(0) = 0 exactly; NaN gives NaN, -inf 0 (expm1: -1), +inf inf.
 [[gnu::always_inline]] inline void exp_lanes(Lanes& out, const Lanes& x) {
-  const Lanes held = x < -746.0 ? Lanes{} - 746.0 : (x > 710.0 ? Lanes{} + 710.0 : x);  // NaN kept
+  Lanes held = x < -746.0 ? Lanes{} - 746.0 : (x > 710.0 ? Lanes{} + 710.0 : x);
+  held = x != x ? Lanes{} : held;  // NaN: computed as 0, replaced below
   LaneInts n;
-  floor_lanes(n, held * 1.4426950408889634 + 0.5);  // nearest n = x / ln 2 (NaN: any n, replaced below)
+  floor_lanes(n, held * 1.4426950408889634 + 0.5);  // nearest n = x / ln 2, in [-1076, 1024]
   const Lanes nd = __builtin_convertvector(n, Lanes);
   const Lanes r = (held - nd * 6.93147180369123816490e-01) - nd * 1.90821492927058770002e-10;
   constexpr double kInverseFactorial[14] = {1.0,
@@ -90,10 +101,12 @@ inline bool finite(double x) { return std::isfinite(x); }
                                             1.0 / 6227020800};
   Lanes p = Lanes{} + kInverseFactorial[13];
   for (int k = 12; k >= 0; --k) p = p * r + kInverseFactorial[k];
-  typedef std::int64_t Wide __attribute__((vector_size(32)));
-  const Wide half = __builtin_convertvector(n >> 1, Wide), rest = __builtin_convertvector(n - (n >> 1), Wide);
-  const Lanes scale_a = reinterpret_cast<Lanes>((half + 1023) << 52);
-  const Lanes scale_b = reinterpret_cast<Lanes>((rest + 1023) << 52);
+  // 2^half 2^rest, each a normal double: half and rest in [-538, 512], so the biased exponents
+  // are positive and the shifts act on non-negative values.
+  typedef std::uint64_t Wide __attribute__((vector_size(32)));
+  const LaneInts half = n >> 1, rest = n - half;
+  const Lanes scale_a = reinterpret_cast<Lanes>(__builtin_convertvector(half + 1023, Wide) << 52);
+  const Lanes scale_b = reinterpret_cast<Lanes>(__builtin_convertvector(rest + 1023, Wide) << 52);
   const Lanes e = p * scale_a * scale_b;
   out = x > 709.782712893384 ? Lanes{} + std::numeric_limits<double>::infinity() : e;
   out = x != x ? x : out;

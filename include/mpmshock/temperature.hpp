@@ -66,7 +66,7 @@ class HugoniotTemperature {
   // The same, four points at a time (Lanes, number.hpp), where the reference curve is the
   // Hugoniot's table and there is no latent heat (in_lanes()): each lane what temperature(J, E)
   // gives it, to within a few ulp (the tension branch's exponential is number.hpp's, not libm's).
-  bool in_lanes() const { return isentrope_.empty() && latent_heat_ == 0.0; }
+  bool in_lanes() const { return isentrope_.empty() && table_.size() >= 2 && latent_heat_ == 0.0; }
   void temperature_lanes(Lanes& T, const Lanes& J, const Lanes& E) const {
     // The table between J_min and 1 (hugoniot_temperature): the interval k = floor(u) of each
     // lane, held within the table for the lanes that take another branch.
