@@ -40,7 +40,11 @@
 // bitwise unchanged, and when the vector loads and stores of lanes.hpp stopped being memcpy
 // (2026-12-06, issue 32: the transfers no longer reload pointers after each store, and GCC
 // contracted their FMAs differently): "default" and "no_smoothing" moved (field sums by at most
-// 2.5e-15 relative, `work` by 2.3e-12, the clock by 9e-13), the other three bitwise unchanged.
+// 2.5e-15 relative, `work` by 2.3e-12, the clock by 9e-13), the other three bitwise unchanged, and
+// when the four-column passes began to weigh by columns once and by rows after (node_rows.hpp's
+// Columns and RowFactors, 2026-12-06, issue 32: the same products in another order): "default" and
+// "no_smoothing" moved (field sums by at most 5.3e-15 relative, `work` by 1.2e-12, the clock by
+// 1.4e-12), the other three bitwise unchanged.
 //
 // Bitwise where that is meaningful: floating-point results depend on the compiler and on the
 // instructions it may use (FMA contraction under -march=native), so the reference records the build

@@ -176,24 +176,26 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
       if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
       const double C = several ? pts.m[p] * capacity[b] : pts.m[p], Cr = C * r, CT = C * T[p];
       const bool rates = r > 0.0;
-      if constexpr (Shape::support == 4) {  // each node given what the loop below gives it
+      if constexpr (Shape::support == 4) {  // weighed by the columns once, then by each row (node_rows.hpp)
         const auto& st = stencils[p];
         const bool consecutive = consecutive_columns(st);
-        for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
+        const Columns<D> c = columns_of(st);
+        const Lanes Cr_columns = c.weight * Cr, CT_columns = c.weight * CT, C_columns = c.weight * C;
+        for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& f) __attribute__((always_inline)) {
           if (rates) {
             Lanes rate;
             load_scalar_row(rate, &flux.node_rate[row], st.column, consecutive);
-            rate += shape.scalar * Cr;
+            rate += f.weight * Cr_columns;
             store_scalar_row(&flux.node_rate[row], st.column, consecutive, rate);
           }
           Lanes temperature;
           load_scalar_row(temperature, &flux.node_temperature[row], st.column, consecutive);
-          temperature += shape.scalar * CT;
+          temperature += f.weight * CT_columns;
           store_scalar_row(&flux.node_temperature[row], st.column, consecutive, temperature);
           if constexpr (several) {
             Lanes capacity;
             load_scalar_row(capacity, &flux.node_capacity[row], st.column, consecutive);
-            capacity += shape.scalar * C;
+            capacity += f.weight * C_columns;
             store_scalar_row(&flux.node_capacity[row], st.column, consecutive, capacity);
           }
         });
@@ -231,13 +233,15 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
     if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       const auto& st = stencils[p];
       const bool consecutive = consecutive_columns(st);
-      Lanes lanes{};
-      for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
+      const double T_p = T[p];
+      Lanes sums{};  // sum over rows of the row weight times r_i (T_i - T_p), by column
+      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& f) __attribute__((always_inline)) {
         Lanes rate, temperature;
         load_scalar_row(rate, &flux.node_rate[row], st.column, consecutive);
         load_scalar_row(temperature, &flux.node_temperature[row], st.column, consecutive);
-        lanes += shape.scalar * rate * (temperature - T[p]);
+        sums += f.weight * (rate * (temperature - T_p));
       });
+      const Lanes lanes = columns_of(st).weight * sums;
       heat = (lanes[0] + lanes[2]) + (lanes[1] + lanes[3]);
     } else {
       for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {

@@ -7,10 +7,10 @@
 // (mass) is one vector [m0 m1 m2 m3]. A row whose columns wrap round the periodic x boundary is not
 // consecutive: its nodes are loaded and stored one by one (the components of a node that share a
 // vector's half as that half) into the same lanes, so every point computes the same numbers
-// whichever way. Each lane computes a node's weights as for_each_node does (shape.hpp), so a
-// scatter adds to each node what the scalar loop added, in the same order of points; a gather's sum
-// over the stencil is grouped by lanes, which moves it at round-off from the scalar loop's. Both
-// stay bitwise independent of thread and rank counts.
+// whichever way. The shape is factored into columns and rows (Columns, RowFactors below), so a
+// node's contribution differs at round-off from for_each_node's (shape.hpp), which the other
+// stencils use; every node still sums its points in the same order, so results stay bitwise
+// independent of thread and rank counts.
 #pragma once
 
 #include <cstddef>
@@ -55,15 +55,22 @@ template <int D>
     out.v[k] = Lanes{a[component_of<D>(k, 0)], a[component_of<D>(k, 1)], a[component_of<D>(k, 2)],
                      a[component_of<D>(k, 3)]};
 }
-// The sum over the lanes of each component.
+// The sum over the lanes of each component, nodes in order: 2D (n0 + n1) + (n2 + n3), 3D
+// ((n0 + n1) + n2) + n3, with the nodes' components aligned by shuffles so that the components add
+// in vector lanes (the same sums as lane by lane, in fewer instructions).
 template <int D>
 [[gnu::always_inline]] inline Vec<D> sum_components(const RowLanes<D>& a) {
   if constexpr (D == 2) {
-    const Lanes s = a.v[0] + a.v[1];
-    return Vec<2>{{s[0] + s[2], s[1] + s[3]}};
-  } else {
-    return Vec<3>{{a.v[0][0] + a.v[0][3] + a.v[1][2] + a.v[2][1], a.v[0][1] + a.v[1][0] + a.v[1][3] + a.v[2][2],
-                   a.v[0][2] + a.v[1][1] + a.v[2][0] + a.v[2][3]}};
+    HalfLanes low, high;
+    split_halves(low, high, a.v[0] + a.v[1]);
+    const HalfLanes s = low + high;
+    return Vec<2>{{s[0], s[1]}};
+  } else {  // node k's (x, y, z) into lanes 0-2; lane 3 is not used
+    const Lanes n1 = __builtin_shufflevector(a.v[0], a.v[1], 3, 4, 5, 5);
+    const Lanes n2 = __builtin_shufflevector(a.v[1], a.v[2], 2, 3, 4, 4);
+    const Lanes n3 = __builtin_shufflevector(a.v[2], a.v[2], 1, 2, 3, 3);
+    const Lanes s = ((a.v[0] + n1) + n2) + n3;
+    return Vec<3>{{s[0], s[1], s[2]}};
   }
 }
 
@@ -134,50 +141,92 @@ template <int D>
   for (int a = 0; a < 4; ++a) row[column[a]] = v[a];
 }
 
-// The shape of one row of a four-column stencil, as for_each_node computes it per node: the weights
-// N (one per node, `scalar`, and repeated per component, `N`) and the gradient dN[j].
+// A four-column stencil's shape, factored. The node of column c in a row has
+//   N = w_c * row.weight,   dN/dx = g_c * row.weight,   dN/dx_j = w_c * row.gradient[j] (j = y, z)
+// with w_c and g_c the x weight and derivative of column c (Columns, once per point) and the row's
+// factors the products of its y (and z) weights and derivatives (RowFactors, once per row). So a
+// scatter weighs a point's values by the columns once and adds them to each row with a row factor,
+// and a gather sums a row's nodes with the row factors and weighs the sums by the columns once at the
+// end (RowSums): the node weights are never formed (issue 32: they were 6 products a row in 2D,
+// 16 in 3D, for every pass).
 template <int D>
-struct RowShape {
-  Lanes scalar;
-  RowLanes<D> N;
-  RowLanes<D> dN[D];
+struct Columns {
+  Lanes weight;    // [w0 w1 w2 w3], for a scalar field
+  Lanes gradient;  // [g0 g1 g2 g3]
+  RowLanes<D> w;   // the weights repeated per component (column_lanes)
+  RowLanes<D> g;   // the derivatives repeated per component
+};
+template <int D>
+[[gnu::always_inline]] inline Columns<D> columns_of(const Stencil<4, D>& st) {
+  Columns<D> c;
+  load_lanes(c.weight, st.w[0]);
+  load_lanes(c.gradient, st.g[0]);
+  column_lanes<D>(c.w, st.w[0]);
+  column_lanes<D>(c.g, st.g[0]);
+  return c;
+}
+
+template <int D>
+struct RowFactors {
+  double weight;       // the product of the row's y (and z) weights
+  double gradient[D];  // [j] for j = 1 .. D-1: the same product with axis j's derivative; [0] unused
 };
 
-// Visits each row of a four-column stencil: f(first node of the row, its shape), rows in
+// Visits each row of a four-column stencil: f(first node of the row, its factors), rows in
 // for_each_node's order (y outermost, then z).
 template <int D, class F>
 [[gnu::always_inline]] inline void for_each_row(const Stencil<4, D>& st, const GridGeometry<D>& g, F&& f) {
-  RowLanes<D> wx, gx;
-  column_lanes<D>(wx, st.w[0]);
-  column_lanes<D>(gx, st.g[0]);
-  Lanes w_columns;
-  load_lanes(w_columns, st.w[0]);
-  RowShape<D> shape;
+  RowFactors<D> r;
+  r.gradient[0] = 0.0;
   for (int b = 0; b < 4; ++b) {
     const double wy = st.w[1][b], gy = st.g[1][b];
     if constexpr (D == 2) {
-      shape.scalar = w_columns * wy;
-      for (int k = 0; k < 2; ++k) {
-        shape.N.v[k] = wx.v[k] * wy;
-        shape.dN[0].v[k] = gx.v[k] * wy;
-        shape.dN[1].v[k] = wx.v[k] * gy;
-      }
-      f(g.row_start(st.row0 + b), shape);
+      r.weight = wy;
+      r.gradient[1] = gy;
+      f(g.row_start(st.row0 + b), r);
     } else {
       for (int c = 0; c < 4; ++c) {
         const double wz = st.w[2][c], gz = st.g[2][c];
-        shape.scalar = (w_columns * wy) * wz;
-        for (int k = 0; k < 3; ++k) {
-          const Lanes wxy = wx.v[k] * wy;
-          shape.N.v[k] = wxy * wz;
-          shape.dN[0].v[k] = (gx.v[k] * wy) * wz;
-          shape.dN[1].v[k] = (wx.v[k] * gy) * wz;
-          shape.dN[2].v[k] = wxy * gz;
-        }
-        f(g.row_start(st.row0 + b) + static_cast<std::size_t>(st.layer[c]) * static_cast<std::size_t>(g.nx), shape);
+        r.weight = wy * wz;
+        r.gradient[1] = gy * wz;
+        r.gradient[2] = wy * gz;
+        f(g.row_start(st.row0 + b) + static_cast<std::size_t>(st.layer[c]) * static_cast<std::size_t>(g.nx), r);
       }
     }
   }
 }
+
+// A gather's row sums of a D-vector field x over a stencil: sum_rows weight x_row and, With gradient,
+// sum_rows gradient[j] x_row; then the field at the point, sum_i N_i x_i, and its gradient,
+// sum_i x_i (x) grad N_i.
+template <int D, bool WithGradient>
+struct RowSums {
+  RowLanes<D> weight{};
+  RowLanes<D> gradient[D]{};  // [j] for j = 1 .. D-1
+
+  [[gnu::always_inline]] void add(const RowFactors<D>& r, const RowLanes<D>& x) {
+    for (int k = 0; k < D; ++k) {
+      weight.v[k] += r.weight * x.v[k];
+      if constexpr (WithGradient)
+        for (int j = 1; j < D; ++j) gradient[j].v[k] += r.gradient[j] * x.v[k];
+    }
+  }
+  // sum_c factor_c sums(c, d), per component d.
+  [[gnu::always_inline]] static Vec<D> weigh(const RowLanes<D>& factor, const RowLanes<D>& sums) {
+    RowLanes<D> product;
+    for (int k = 0; k < D; ++k) product.v[k] = factor.v[k] * sums.v[k];
+    return sum_components(product);
+  }
+  [[gnu::always_inline]] Vec<D> value(const Columns<D>& c) const { return weigh(c.w, weight); }
+  // G(d, j) = sum_i x_i[d] dN_i/dx_j.
+  [[gnu::always_inline]] Mat<D> gradient_of(const Columns<D>& c) const {
+    Mat<D> G;
+    for (int j = 0; j < D; ++j) {
+      const Vec<D> column = j == 0 ? weigh(c.g, weight) : weigh(c.w, gradient[j]);
+      for (int d = 0; d < D; ++d) G(d, j) = column[d];
+    }
+    return G;
+  }
+};
 
 }  // namespace mpmshock

@@ -83,28 +83,36 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
     for (int d = 0; d < D; ++d) mv[d] = m * pts.v[p][d];
     const Mat<D> sigma = cauchy_stress<D, Strength, Smoothed>(pts, p);
     if constexpr (Shape::support == 4) {
-      // A row's four nodes at once (node_rows.hpp), each node given what the loop below gives it.
+      // A row's four nodes at once (node_rows.hpp): the point's values weighed by the columns once,
+      // then added to each row with its factors. f_i = -V sigma grad N_i, so the force's x-derivative
+      // part goes with the columns' derivatives and the row weight, the others with the columns'
+      // weights and the row's derivatives.
       const bool consecutive = consecutive_columns(st);
-      RowLanes<D> mv_lanes, sigma_lanes[D];  // sigma_lanes[j]: sigma(d, j) at component d
+      const Columns<D> c = columns_of(st);
+      const Lanes mass_columns = c.weight * m;
+      RowLanes<D> mv_lanes, momentum_columns, force_columns[D];
       component_lanes<D>(mv_lanes, mv.c);
+      for (int k = 0; k < D; ++k) momentum_columns.v[k] = c.w.v[k] * mv_lanes.v[k];
       for (int j = 0; j < D; ++j) {
         double column[D];
-        for (int d = 0; d < D; ++d) column[d] = sigma(d, j);
-        component_lanes<D>(sigma_lanes[j], column);
+        for (int d = 0; d < D; ++d) column[d] = -V * sigma(d, j);
+        RowLanes<D> sigma_lanes;
+        component_lanes<D>(sigma_lanes, column);
+        for (int k = 0; k < D; ++k) force_columns[j].v[k] = (j == 0 ? c.g.v[k] : c.w.v[k]) * sigma_lanes.v[k];
       }
-      for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
+      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r) __attribute__((always_inline)) {
         Lanes mass;
         load_scalar_row(mass, &g.m[row], st.column, consecutive);
-        mass += shape.scalar * m;
+        mass += r.weight * mass_columns;
         store_scalar_row(&g.m[row], st.column, consecutive, mass);
         RowLanes<D> momentum, force;
         load_row(momentum, &g.mv[row], st.column, consecutive);
         load_row(force, &g.f[row], st.column, consecutive);
         for (int k = 0; k < D; ++k) {
-          momentum.v[k] += shape.N.v[k] * mv_lanes.v[k];
-          Lanes t = sigma_lanes[0].v[k] * shape.dN[0].v[k];
-          for (int j = 1; j < D; ++j) t += sigma_lanes[j].v[k] * shape.dN[j].v[k];
-          force.v[k] -= V * t;
+          momentum.v[k] += r.weight * momentum_columns.v[k];
+          Lanes t = r.weight * force_columns[0].v[k];
+          for (int j = 1; j < D; ++j) t += r.gradient[j] * force_columns[j].v[k];
+          force.v[k] += t;
         }
         store_row(&g.mv[row], st.column, consecutive, momentum);
         store_row(&g.f[row], st.column, consecutive, force);
@@ -150,19 +158,20 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
     Vec<D> acc{}, pic{};
     if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       const bool consecutive = consecutive_columns(st);
-      RowLanes<D> acc_lanes{}, pic_lanes{};
-      for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
+      RowSums<D, false> acc_sums, pic_sums;
+      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r) __attribute__((always_inline)) {
         RowLanes<D> an;
         load_row(an, &g.a[row], st.column, consecutive);
-        for (int k = 0; k < D; ++k) acc_lanes.v[k] += shape.N.v[k] * an.v[k];
+        acc_sums.add(r, an);
         if constexpr (Blend) {
           RowLanes<D> vn;
           load_row(vn, &g.v[row], st.column, consecutive);
-          for (int k = 0; k < D; ++k) pic_lanes.v[k] += shape.N.v[k] * vn.v[k];
+          pic_sums.add(r, vn);
         }
       });
-      acc = sum_components(acc_lanes);
-      if constexpr (Blend) pic = sum_components(pic_lanes);
+      const Columns<D> c = columns_of(st);
+      acc = acc_sums.value(c);
+      if constexpr (Blend) pic = pic_sums.value(c);
     } else {
       for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
         for (int d = 0; d < D; ++d) acc[d] += N * g.a[i][d];
@@ -187,14 +196,16 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
     if constexpr (Remap) {
       Vec<D> mv;
       for (int d = 0; d < D; ++d) mv[d] = pts.m[p] * v[d];
-      if constexpr (Shape::support == 4) {  // each node given what the loop below gives it
+      if constexpr (Shape::support == 4) {  // as P2G's momentum
         const bool consecutive = consecutive_columns(st);
-        RowLanes<D> mv_lanes;
+        const Columns<D> c = columns_of(st);
+        RowLanes<D> mv_lanes, momentum_columns;
         component_lanes<D>(mv_lanes, mv.c);
-        for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
+        for (int k = 0; k < D; ++k) momentum_columns.v[k] = c.w.v[k] * mv_lanes.v[k];
+        for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r) __attribute__((always_inline)) {
           RowLanes<D> momentum;
           load_row(momentum, &g.mv[row], st.column, consecutive);
-          for (int k = 0; k < D; ++k) momentum.v[k] += shape.N.v[k] * mv_lanes.v[k];
+          for (int k = 0; k < D; ++k) momentum.v[k] += r.weight * momentum_columns.v[k];
           store_row(&g.mv[row], st.column, consecutive, momentum);
         });
       } else {
@@ -242,32 +253,24 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
     Mat<D> L{};  // L[u]
     Mat<D> A{};  // L[v^n + u], twice the averaged gradient
     Vec<D> vel{};
-    if constexpr (Shape::support == 4) {
-      // A row's four nodes at once (node_rows.hpp); lanes of L(d, j) and A(d, j) by column j.
+    if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       const bool consecutive = consecutive_columns(st);
-      RowLanes<D> L_lanes[D]{}, A_lanes[D]{}, vel_lanes{};
-      for_each_row(st, geo, [&](std::size_t row, const RowShape<D>& shape) __attribute__((always_inline)) {
-        RowLanes<D> un, vn, an;
+      RowSums<D, true> u_sums, vn_u_sums;  // of u, and of v^n + u
+      RowSums<D, false> v_sums;
+      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r) __attribute__((always_inline)) {
+        RowLanes<D> un, vn, an, vn_u;
         load_row(un, &u[row], st.column, consecutive);
         load_row(vn, &g.v[row], st.column, consecutive);
         load_row(an, &g.a[row], st.column, consecutive);
-        for (int k = 0; k < D; ++k) {
-          const Lanes sum = vn.v[k] - dt * an.v[k] + un.v[k];
-          for (int j = 0; j < D; ++j) {
-            L_lanes[j].v[k] += un.v[k] * shape.dN[j].v[k];
-            A_lanes[j].v[k] += sum * shape.dN[j].v[k];
-          }
-          vel_lanes.v[k] += vn.v[k] * shape.N.v[k];
-        }
+        for (int k = 0; k < D; ++k) vn_u.v[k] = vn.v[k] - dt * an.v[k] + un.v[k];
+        u_sums.add(r, un);
+        vn_u_sums.add(r, vn_u);
+        v_sums.add(r, vn);
       });
-      for (int j = 0; j < D; ++j) {
-        const Vec<D> l = sum_components(L_lanes[j]), s2 = sum_components(A_lanes[j]);
-        for (int d = 0; d < D; ++d) {
-          L(d, j) = l[d];
-          A(d, j) = s2[d];
-        }
-      }
-      vel = sum_components(vel_lanes);
+      const Columns<D> c = columns_of(st);
+      L = u_sums.gradient_of(c);
+      A = vn_u_sums.gradient_of(c);
+      vel = v_sums.value(c);
     } else {
       for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
         for (int d = 0; d < D; ++d) {
