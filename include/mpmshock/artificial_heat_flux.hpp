@@ -163,7 +163,7 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
   // 1. scattered with the heat capacities where the bodies differ (a choice made once, not per node).
   auto scatter = [&](auto materials) {
     constexpr bool several = decltype(materials)::value;
-    bins.scatter([&](std::size_t p) {
+    bins.scatter([&](std::size_t p) __attribute__((always_inline)) {
       const auto b = static_cast<std::size_t>(pts.body[p]);
       // A point that does not compress has rate 0, and adding N * 0 to a nodal rate changes no bit,
       // so it adds its temperature (and capacity) alone. Points in uniform motion are not among
@@ -175,31 +175,28 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
       // names it and not its neighbours.
       if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
       const double C = several ? pts.m[p] * capacity[b] : pts.m[p], Cr = C * r, CT = C * T[p];
-      const bool rates = r > 0.0;
       if constexpr (Shape::support == 4) {  // weighed by the columns once, then by each row (node_rows.hpp)
         const auto& st = stencils[p];
-        const bool consecutive = consecutive_columns(st);
         const Columns<D> c = columns_of(st);
         const Lanes Cr_columns = c.weight * Cr, CT_columns = c.weight * CT, C_columns = c.weight * C;
-        for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& f) __attribute__((always_inline)) {
-          if (rates) {
-            Lanes rate;
-            load_scalar_row(rate, &flux.node_rate[row], st.column, consecutive);
-            rate += f.weight * Cr_columns;
-            store_scalar_row(&flux.node_rate[row], st.column, consecutive, rate);
-          }
+        for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& f, const auto& nodes) __attribute__((always_inline)) {
+          Lanes rate;  // with r = 0 too: a test per row cost more than the adds of zero it saves
+          nodes.load(rate, &flux.node_rate[row]);
+          rate += f.weight * Cr_columns;
+          nodes.store(&flux.node_rate[row], rate);
           Lanes temperature;
-          load_scalar_row(temperature, &flux.node_temperature[row], st.column, consecutive);
+          nodes.load(temperature, &flux.node_temperature[row]);
           temperature += f.weight * CT_columns;
-          store_scalar_row(&flux.node_temperature[row], st.column, consecutive, temperature);
+          nodes.store(&flux.node_temperature[row], temperature);
           if constexpr (several) {
             Lanes capacity;
-            load_scalar_row(capacity, &flux.node_capacity[row], st.column, consecutive);
+            nodes.load(capacity, &flux.node_capacity[row]);
             capacity += f.weight * C_columns;
-            store_scalar_row(&flux.node_capacity[row], st.column, consecutive, capacity);
+            nodes.store(&flux.node_capacity[row], capacity);
           }
         });
       } else {
+        const bool rates = r > 0.0;
         for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
           if (rates) flux.node_rate[i] += N * Cr;
           flux.node_temperature[i] += N * CT;
@@ -232,13 +229,12 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
     double heat = 0.0;
     if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       const auto& st = stencils[p];
-      const bool consecutive = consecutive_columns(st);
       const double T_p = T[p];
       Lanes sums{};  // sum over rows of the row weight times r_i (T_i - T_p), by column
-      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& f) __attribute__((always_inline)) {
+      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& f, const auto& nodes) __attribute__((always_inline)) {
         Lanes rate, temperature;
-        load_scalar_row(rate, &flux.node_rate[row], st.column, consecutive);
-        load_scalar_row(temperature, &flux.node_temperature[row], st.column, consecutive);
+        nodes.load(rate, &flux.node_rate[row]);
+        nodes.load(temperature, &flux.node_temperature[row]);
         sums += f.weight * (rate * (temperature - T_p));
       });
       const Lanes lanes = columns_of(st).weight * sums;

@@ -6,10 +6,13 @@
 // and a column weight repeats in the same pattern (2D [w0 w0 w1 w1] [w2 w2 w3 w3]). A scalar field
 // (mass) is one vector [m0 m1 m2 m3]. A row whose columns wrap round the periodic x boundary is not
 // consecutive: its nodes are loaded and stored one by one (the components of a node that share a
-// vector's half as that half) into the same lanes, so every point computes the same numbers
-// whichever way. The shape is factored into columns and rows (Columns, RowFactors below), so a
-// node's contribution differs at round-off from for_each_node's (shape.hpp), which the other
-// stencils use; every node still sums its points in the same order, so results stay bitwise
+// vector's half as that half) into the same lanes. Whether a stencil wraps is decided once per
+// point and the pass's row loop compiled for each case (RowNodes): the same formulas, but the
+// compiler may contract a*b + c into FMAs differently in the two copies, so a point beside the
+// seam can differ at round-off from the same point elsewhere. The shape is factored into columns
+// and rows (Columns, RowFactors below), so a node's contribution differs at round-off from
+// for_each_node's (shape.hpp), which the other stencils use. Whether a stencil wraps depends only on
+// the point's x, and every node sums its points in the same order, so results stay bitwise
 // independent of thread and rank counts.
 #pragma once
 
@@ -172,28 +175,51 @@ struct RowFactors {
   double gradient[D];  // [j] for j = 1 .. D-1: the same product with axis j's derivative; [0] unused
 };
 
-// Visits each row of a four-column stencil: f(first node of the row, its factors), rows in
-// for_each_node's order (y outermost, then z).
+// A stencil row's four nodes in a nodal field, with whether its columns are consecutive known when
+// compiled, so that a pass decides it once per point and not at every load and store.
+template <bool Consecutive>
+struct RowNodes {
+  const int* column;
+  template <int D>
+  [[gnu::always_inline]] void load(RowLanes<D>& out, const Vec<D>* row) const {
+    load_row(out, row, column, Consecutive);
+  }
+  template <int D>
+  [[gnu::always_inline]] void store(Vec<D>* row, const RowLanes<D>& v) const {
+    store_row(row, column, Consecutive, v);
+  }
+  [[gnu::always_inline]] void load(Lanes& out, const double* row) const { load_scalar_row(out, row, column, Consecutive); }
+  [[gnu::always_inline]] void store(double* row, const Lanes& v) const { store_scalar_row(row, column, Consecutive, v); }
+};
+
+// Visits each row of a four-column stencil: f(first node of the row, its factors, its RowNodes),
+// rows in for_each_node's order (y outermost, then z).
 template <int D, class F>
 [[gnu::always_inline]] inline void for_each_row(const Stencil<4, D>& st, const GridGeometry<D>& g, F&& f) {
-  RowFactors<D> r;
-  r.gradient[0] = 0.0;
-  for (int b = 0; b < 4; ++b) {
-    const double wy = st.w[1][b], gy = st.g[1][b];
-    if constexpr (D == 2) {
-      r.weight = wy;
-      r.gradient[1] = gy;
-      f(g.row_start(st.row0 + b), r);
-    } else {
-      for (int c = 0; c < 4; ++c) {
-        const double wz = st.w[2][c], gz = st.g[2][c];
-        r.weight = wy * wz;
-        r.gradient[1] = gy * wz;
-        r.gradient[2] = wy * gz;
-        f(g.row_start(st.row0 + b) + static_cast<std::size_t>(st.layer[c]) * static_cast<std::size_t>(g.nx), r);
+  auto rows = [&](const auto& nodes) __attribute__((always_inline)) {
+    const std::size_t first = g.row_start(st.row0), stride = g.nodes_per_row();
+    RowFactors<D> r;
+    r.gradient[0] = 0.0;
+    for (int b = 0; b < 4; ++b) {
+      const double wy = st.w[1][b], gy = st.g[1][b];
+      const std::size_t row = first + static_cast<std::size_t>(b) * stride;
+      if constexpr (D == 2) {
+        r.weight = wy;
+        r.gradient[1] = gy;
+        f(row, r, nodes);
+      } else {
+        for (int c = 0; c < 4; ++c) {
+          const double wz = st.w[2][c], gz = st.g[2][c];
+          r.weight = wy * wz;
+          r.gradient[1] = gy * wz;
+          r.gradient[2] = wy * gz;
+          f(row + static_cast<std::size_t>(st.layer[c]) * static_cast<std::size_t>(g.nx), r, nodes);
+        }
       }
     }
-  }
+  };
+  if (consecutive_columns(st)) rows(RowNodes<true>{st.column});
+  else rows(RowNodes<false>{st.column});
 }
 
 // A gather's row sums of a D-vector field x over a stencil: sum_rows weight x_row and, With gradient,

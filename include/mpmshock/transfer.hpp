@@ -76,7 +76,7 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();
   halo.zero(g.m, g.mv, g.f);
-  bins.scatter([&](std::size_t p) {
+  bins.scatter([&](std::size_t p) __attribute__((always_inline)) {  // inlined: pointers loaded once
     const auto& st = stencils[p];
     const double m = pts.m[p], V = pts.volume(p);
     Vec<D> mv;
@@ -87,7 +87,6 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
       // then added to each row with its factors. f_i = -V sigma grad N_i, so the force's x-derivative
       // part goes with the columns' derivatives and the row weight, the others with the columns'
       // weights and the row's derivatives.
-      const bool consecutive = consecutive_columns(st);
       const Columns<D> c = columns_of(st);
       const Lanes mass_columns = c.weight * m;
       RowLanes<D> mv_lanes, momentum_columns, force_columns[D];
@@ -100,22 +99,22 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
         component_lanes<D>(sigma_lanes, column);
         for (int k = 0; k < D; ++k) force_columns[j].v[k] = (j == 0 ? c.g.v[k] : c.w.v[k]) * sigma_lanes.v[k];
       }
-      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r) __attribute__((always_inline)) {
+      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
         Lanes mass;
-        load_scalar_row(mass, &g.m[row], st.column, consecutive);
+        nodes.load(mass, &g.m[row]);
         mass += r.weight * mass_columns;
-        store_scalar_row(&g.m[row], st.column, consecutive, mass);
+        nodes.store(&g.m[row], mass);
         RowLanes<D> momentum, force;
-        load_row(momentum, &g.mv[row], st.column, consecutive);
-        load_row(force, &g.f[row], st.column, consecutive);
+        nodes.load(momentum, &g.mv[row]);
+        nodes.load(force, &g.f[row]);
         for (int k = 0; k < D; ++k) {
           momentum.v[k] += r.weight * momentum_columns.v[k];
           Lanes t = r.weight * force_columns[0].v[k];
           for (int j = 1; j < D; ++j) t += r.gradient[j] * force_columns[j].v[k];
           force.v[k] += t;
         }
-        store_row(&g.mv[row], st.column, consecutive, momentum);
-        store_row(&g.f[row], st.column, consecutive, force);
+        nodes.store(&g.mv[row], momentum);
+        nodes.store(&g.f[row], force);
       });
     } else {
       for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
@@ -153,19 +152,18 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
                                 [[maybe_unused]] double flip_fraction) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();
-  auto kernel = [&](std::size_t p) {
+  auto kernel = [&](std::size_t p) __attribute__((always_inline)) {
     const auto& st = stencils[p];
     Vec<D> acc{}, pic{};
     if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
-      const bool consecutive = consecutive_columns(st);
       RowSums<D, false> acc_sums, pic_sums;
-      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r) __attribute__((always_inline)) {
+      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
         RowLanes<D> an;
-        load_row(an, &g.a[row], st.column, consecutive);
+        nodes.load(an, &g.a[row]);
         acc_sums.add(r, an);
         if constexpr (Blend) {
           RowLanes<D> vn;
-          load_row(vn, &g.v[row], st.column, consecutive);
+          nodes.load(vn, &g.v[row]);
           pic_sums.add(r, vn);
         }
       });
@@ -197,16 +195,15 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
       Vec<D> mv;
       for (int d = 0; d < D; ++d) mv[d] = pts.m[p] * v[d];
       if constexpr (Shape::support == 4) {  // as P2G's momentum
-        const bool consecutive = consecutive_columns(st);
         const Columns<D> c = columns_of(st);
         RowLanes<D> mv_lanes, momentum_columns;
         component_lanes<D>(mv_lanes, mv.c);
         for (int k = 0; k < D; ++k) momentum_columns.v[k] = c.w.v[k] * mv_lanes.v[k];
-        for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r) __attribute__((always_inline)) {
+        for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
           RowLanes<D> momentum;
-          load_row(momentum, &g.mv[row], st.column, consecutive);
+          nodes.load(momentum, &g.mv[row]);
           for (int k = 0; k < D; ++k) momentum.v[k] += r.weight * momentum_columns.v[k];
-          store_row(&g.mv[row], st.column, consecutive, momentum);
+          nodes.store(&g.mv[row], momentum);
         });
       } else {
         for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
@@ -254,14 +251,13 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
     Mat<D> A{};  // L[v^n + u], twice the averaged gradient
     Vec<D> vel{};
     if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
-      const bool consecutive = consecutive_columns(st);
       RowSums<D, true> u_sums, vn_u_sums;  // of u, and of v^n + u
       RowSums<D, false> v_sums;
-      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r) __attribute__((always_inline)) {
+      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
         RowLanes<D> un, vn, an, vn_u;
-        load_row(un, &u[row], st.column, consecutive);
-        load_row(vn, &g.v[row], st.column, consecutive);
-        load_row(an, &g.a[row], st.column, consecutive);
+        nodes.load(un, &u[row]);
+        nodes.load(vn, &g.v[row]);
+        nodes.load(an, &g.a[row]);
         for (int k = 0; k < D; ++k) vn_u.v[k] = vn.v[k] - dt * an.v[k] + un.v[k];
         u_sums.add(r, un);
         vn_u_sums.add(r, vn_u);
