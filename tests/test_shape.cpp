@@ -4,11 +4,12 @@
 // interior node for any offset from the grid where the points' domains tile the material (gimp,
 // bspline2_domain), which bspline2 at points does not give; the domain B-spline's weights against
 // its integral written out piece by piece, and its stencils computed four points at a time equal to
-// the bytes of those computed one at a time, in 2D and 3D.
+// the bytes of those computed one at a time, in 2D and 3D; the first node's index against std::floor.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -265,5 +266,31 @@ int main() {
   CHECK(sd.column[0] == g.nx - 1 && sd.column[1] == 0 && sd.column[2] == 1 && sd.column[3] == 2);
   const auto se = QuadraticBSplineDomainShape::at(Vec<2>{{g.width() * (1 - 1e-9), 0.0}}, g);
   CHECK(se.column[0] == g.nx - 2 && se.column[1] == g.nx - 1 && se.column[2] == 0 && se.column[3] == 1);
+
+  // floor_index (every stencil's first node) and floor_lanes (four points' stencils) against
+  // std::floor: integers and their neighbours either side, both signs, halves, the clamps at
+  // +-1e9 and NaN (to -1e9), and random values over the grid's range and far beyond it.
+  {
+    std::vector<double> us = {0.0, -0.0, 0.5, -0.5, 1e9, -1e9, 2e9, -2e9, 1e300, -1e300,
+                              std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                              std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::denorm_min(),
+                              -std::numeric_limits<double>::denorm_min()};
+    for (int i = -70; i <= 70; ++i)
+      for (double u : {static_cast<double>(i), std::nextafter(static_cast<double>(i), -1e300),
+                       std::nextafter(static_cast<double>(i), 1e300)})
+        us.push_back(u);
+    std::uniform_real_distribution<double> near(-200.0, 200.0), far(-3e9, 3e9);
+    for (int k = 0; k < 20000; ++k) us.push_back(k % 2 ? near(rng) : far(rng));
+    int wrong = 0;
+    for (std::size_t k = 0; k < us.size(); ++k) {
+      const double u = us[k], held = std::isnan(u) ? -1e9 : std::clamp(u, -1e9, 1e9);
+      const int expected = static_cast<int>(std::floor(held));
+      if (detail::floor_index(u) != expected) ++wrong;
+      LaneInts four;
+      floor_lanes(four, Lanes{u, us[(k + 1) % us.size()], u, u});
+      if (four[0] != expected || four[2] != expected) ++wrong;
+    }
+    CHECK(wrong == 0);
+  }
   return check::result();
 }

@@ -78,10 +78,13 @@ inline int wrap(int i, int n) { return i < 0 ? i + n : (i >= n ? i - n : i); }
 
 // floor(u) as an int, for any u: a point far off the grid (or NaN) gets a node index far outside
 // it, which the callers report, instead of an int conversion out of range (undefined behaviour).
+// Truncated, and one less where that rounded a negative u up: exact, without a call to libm's floor
+// (which GCC does not inline), as floor_lanes (lanes.hpp) does for four.
 inline int floor_index(double u) {
   if (!(u >= -1e9)) u = -1e9;
   if (u > 1e9) u = 1e9;
-  return static_cast<int>(std::floor(u));
+  const int truncated = static_cast<int>(u);
+  return static_cast<double>(truncated) > u ? truncated - 1 : truncated;
 }
 
 // Fills a stencil from a 1D rule applied on each axis, periodic in x and z. Rule::base(u) is the
