@@ -1,6 +1,9 @@
 #include "mpmshock/diagnostics.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "mpmshock/lanes.hpp"
 
 namespace mpmshock {
 
@@ -12,15 +15,23 @@ Totals compute_totals(const Particles<D>& p, const Comm& comm) {
 #pragma omp parallel
   {
     ExactSum mine[kSums];
+    // Four points' terms at a time (ExactSum::add_lanes: the words of four add() calls).
+    const std::ptrdiff_t groups = (n + 3) / 4;
 #pragma omp for schedule(static) nowait
-    for (std::ptrdiff_t q = 0; q < n; ++q) {
-      const double m = p.m[q];
-      const Vec<D>& v = p.v[q];
-      mine[kMass].add(m);
-      for (int d = 0; d < D; ++d) mine[kMomentum + d].add(m * v[d]);
-      mine[kMagnitude].add(m * speed(v));
-      mine[kKinetic].add(0.5 * m * dot(v, v));
-      mine[kInternal].add(m * p.E[q]);
+    for (std::ptrdiff_t g = 0; g < groups; ++g) {
+      const int count = static_cast<int>(std::min<std::ptrdiff_t>(4, n - 4 * g));
+      Lanes terms[kSums] = {};
+      for (int l = 0; l < count; ++l) {
+        const std::ptrdiff_t q = 4 * g + l;
+        const double m = p.m[q];
+        const Vec<D>& v = p.v[q];
+        terms[kMass][l] = m;
+        for (int d = 0; d < D; ++d) terms[kMomentum + d][l] = m * v[d];
+        terms[kMagnitude][l] = m * speed(v);
+        terms[kKinetic][l] = 0.5 * m * dot(v, v);
+        terms[kInternal][l] = m * p.E[q];
+      }
+      for (int k = 0; k < kSums; ++k) mine[k].add_lanes(terms[k], count);  // zeros add nothing
     }
 #pragma omp critical(mpmshock_totals)
     for (int k = 0; k < kSums; ++k) sums[k] += mine[k];
