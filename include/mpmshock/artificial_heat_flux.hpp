@@ -105,21 +105,16 @@ void point_temperatures_and_rates(Particles<D>& pts, PointRange range, const Bod
                                   ArtificialHeatFlux& flux, double pi2_dt_over_h2) {
   if (flux.point_rate.size() < pts.size()) flux.point_rate.resize(pts.size());
   if (thermal.in_lanes()) {
-    const std::size_t groups = (range.end - range.begin + 3) / 4;
+    auto points = [&](auto four, std::size_t p) __attribute__((always_inline)) {
+      heat_flux_four<decltype(four)::value>(pts, p, thermal.of_body(pts.body[p]), flux,
+                                            flux.sound_speed[static_cast<std::size_t>(pts.body[p])], pi2_dt_over_h2);
+    };
+    const std::size_t groups = groups_of_four(range);
 #pragma omp parallel for schedule(dynamic, kChunk / 4)
-    for (std::size_t g = 0; g < groups; ++g) {
-      const std::size_t p = range.begin + 4 * g, n = std::min<std::size_t>(4, range.end - p);
-      bool one_body = n == 4;
-      for (std::size_t l = 1; l < n; ++l) one_body = one_body && pts.body[p + l] == pts.body[p];
-      if (one_body) {
-        const auto b = static_cast<std::size_t>(pts.body[p]);
-        heat_flux_four<true>(pts, p, thermal.of_body(pts.body[p]), flux, flux.sound_speed[b], pi2_dt_over_h2);
-      } else {
-        for (std::size_t q = p; q < p + n; ++q)
-          heat_flux_four<false>(pts, q, thermal.of_body(pts.body[q]), flux,
-                                flux.sound_speed[static_cast<std::size_t>(pts.body[q])], pi2_dt_over_h2);
-      }
-    }
+    for (std::size_t g = 0; g < groups; ++g)
+      for_group_of_four(
+          pts, range, g, [&](std::size_t p) __attribute__((always_inline)) { points(std::true_type{}, p); },
+          [&](std::size_t q) __attribute__((always_inline)) { points(std::false_type{}, q); });
     return;
   }
 #pragma omp parallel for schedule(dynamic, kChunk)

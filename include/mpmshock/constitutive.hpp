@@ -78,12 +78,8 @@ template <int D, class T, class Eos, class Strength, class Viscosity, class Fail
   const StrainRate<D, T> rate = strain_rate(st.L);
   const T volume_rate = volume_rate_of(st);
   const T volume_shift = (volume_rate - trace(st.L)) / static_cast<double>(D);  // 0 without smoothing
+  const PointState<D, T> before = st;  // (a double keeps only its s; lanes keep more, below)
   const T J_before = det(st.F), pq_before = st.P + st.q;
-  [[maybe_unused]] const Deviator<D, T> s_before = st.s;
-  [[maybe_unused]] const auto before = [&] {  // lanes: the state as it came, for the lanes that are not physical
-    if constexpr (lanes) return st;
-    else return 0;
-  }();
 
   // Energy: the exact work of the step's nodal forces on the point (compression, plastic and
   // viscous work alike), which is what the points' kinetic energy lost.
@@ -133,12 +129,12 @@ template <int D, class T, class Eos, class Strength, class Viscosity, class Fail
   T signal;
   if constexpr (!Viscosity::active) {
     st.q = T{};
-    own_work_mismatch(st, eos.rho0(), J_before, J, pq_before, s_before, dt);
+    own_work_mismatch(st, eos.rho0(), J_before, J, pq_before, before.s, dt);
     signal = square_root(c2);
   } else {
     const T c_bulk = square_root(c2_bulk);
     st.q = viscosity.pressure(rho, c_bulk, h, volume_rate);
-    own_work_mismatch(st, eos.rho0(), J_before, J, pq_before, s_before, dt);
+    own_work_mismatch(st, eos.rho0(), J_before, J, pq_before, before.s, dt);
     // Fastest signal at this point: longitudinal sound speed plus the viscous speed.
     const T Q = viscosity.signal(c_bulk, h, volume_rate);
     signal = Q + square_root(Q * Q + c2);
@@ -177,9 +173,7 @@ struct InLanes : std::false_type {};
 template <class Law>
 struct InLanes<Law, std::void_t<decltype(Law::in_lanes)>> : std::bool_constant<Law::in_lanes> {};
 
-// The arithmetic of four lanes' step: the point update, then each lane's speed check and its
-// candidates for the largest signal speed. One body of instructions whichever way its lanes were
-// filled (MPMSHOCK_ONE_BODY, number.hpp).
+// Each lane's candidates for the largest signal speed and its check, from step_lanes.
 struct LaneSignals {
   Lanes sound, volume;  // |v| + the point's signal speed; volume_change_signal |tr D|
   LaneBits bad;         // a state that is not physical, or a runaway speed
@@ -190,6 +184,9 @@ struct PointStepConstants {
   double speed_limit;           // |v| above this is a runaway
   double volume_change_signal;  // a volume change's signal speed per |tr D|
 };
+// The arithmetic of four lanes' step: the point update, then each lane's speed check and its
+// candidates for the largest signal speed. One body of instructions whichever way its lanes were
+// filled (MPMSHOCK_ONE_BODY, number.hpp).
 template <int D, class Eos, class Strength, class Viscosity>
 MPMSHOCK_ONE_BODY void step_lanes(PointState<D, Lanes>& st, const Vec<D, Lanes>& v, const Eos& eos,
                                   const Strength& strength, const Viscosity& viscosity, const PointStepConstants& k,
@@ -204,6 +201,27 @@ MPMSHOCK_ONE_BODY void step_lanes(PointState<D, Lanes>& st, const Vec<D, Lanes>&
   out.volume = k.volume_change_signal * rate;
 }
 
+// Visits each point field the update writes, with its member of the point's state:
+// f(the field's values, the member). Those it only reads (L, work, v) are not among them.
+template <class Strength, class Failure, int D, class State, class F>
+[[gnu::always_inline]] inline void for_each_updated_field(Particles<D>& pts, State& st, bool stores, bool heats, F&& f) {
+  f(pts.F.data(), st.F);
+  f(pts.E.data(), st.E);
+  f(pts.P.data(), st.P);
+  f(pts.q.data(), st.q);
+  if constexpr (Strength::has_stress) {
+    f(pts.s.data(), st.s);
+    f(pts.eps_p.data(), st.eps_p);
+    if (stores) f(pts.E_stored.data(), st.E_stored);
+    if (heats) f(pts.plastic_heat.data(), st.plastic_heat);
+  }
+  if constexpr (Strength::has_back_stress) f(pts.alpha.data(), st.alpha);
+  if constexpr (Failure::active) {
+    f(pts.failure_J.data(), st.failure_J);
+    f(pts.damage.data(), st.damage);
+  }
+}
+
 // The update of points p..p+3 (kFour: all of one body) or of point p alone in every lane.
 template <bool kFour, int D, class Eos, class Strength, class Viscosity>
 [[gnu::always_inline]] inline void update_four(Particles<D>& pts, std::size_t p, const Eos& eos, const Strength& strength,
@@ -213,33 +231,16 @@ template <bool kFour, int D, class Eos, class Strength, class Viscosity>
   PointState<D, Lanes> st;
   load_points<kFour>(st.L, &pts.L[p]);
   load_points<kFour>(st.work, &pts.work[p]);
-  load_points<kFour>(st.F, &pts.F[p]);
-  load_points<kFour>(st.E, &pts.E[p]);
-  load_points<kFour>(st.P, &pts.P[p]);
-  load_points<kFour>(st.q, &pts.q[p]);
   if (volume_rate) load_points<kFour>(st.volume_rate, &volume_rate[p]);
-  if constexpr (Strength::has_stress) {
-    load_points<kFour>(st.s, &pts.s[p]);
-    load_points<kFour>(st.eps_p, &pts.eps_p[p]);
-    if (stores) load_points<kFour>(st.E_stored, &pts.E_stored[p]);
-    if (heats) load_points<kFour>(st.plastic_heat, &pts.plastic_heat[p]);
-  }
-  if constexpr (Strength::has_back_stress) load_points<kFour>(st.alpha, &pts.alpha[p]);
+  for_each_updated_field<Strength, NoFailure>(
+      pts, st, stores, heats, [&](auto* field, auto& x) __attribute__((always_inline)) { load_points<kFour>(x, field + p); });
   Vec<D, Lanes> v;
   load_points<kFour>(v, &pts.v[p]);
   LaneSignals checks;
   step_lanes<D>(st, v, eos, strength, viscosity, k, checks);
-  store_points<kFour>(&pts.F[p], st.F);
-  store_points<kFour>(&pts.E[p], st.E);
-  store_points<kFour>(&pts.P[p], st.P);
-  store_points<kFour>(&pts.q[p], st.q);
-  if constexpr (Strength::has_stress) {
-    store_points<kFour>(&pts.s[p], st.s);
-    store_points<kFour>(&pts.eps_p[p], st.eps_p);
-    if (stores) store_points<kFour>(&pts.E_stored[p], st.E_stored);
-    if (heats) store_points<kFour>(&pts.plastic_heat[p], st.plastic_heat);
-  }
-  if constexpr (Strength::has_back_stress) store_points<kFour>(&pts.alpha[p], st.alpha);
+  for_each_updated_field<Strength, NoFailure>(
+      pts, st, stores, heats,
+      [&](auto* field, const auto& x) __attribute__((always_inline)) { store_points<kFour>(field + p, x); });
   // NaN never wins the maximum (as in std::max over a list), so the largest speed is the same
   // however points are grouped; comparisons are exact.
   Lanes largest = Lanes{} + max_signal;
@@ -265,10 +266,8 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
   const Strength* strength_of[kBodies] = {&std::get<Strength>(model.strength[0]), &std::get<Strength>(model.strength[1]),
                                           &std::get<Strength>(model.strength[2])};
   const Viscosity& viscosity = std::get<Viscosity>(model.viscosity);
-  const Failure& failure = std::get<Failure>(model.failure);
   double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};
-  const double speed_limit2 = model.speed_limit * model.speed_limit;
   // The mismatch summed exactly, a sum per thread: the same bits for any thread and rank count.
   struct alignas(64) ThreadSum {
     ExactSum sum;
@@ -277,66 +276,39 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
   const bool stores = pts.stores_cold_work();       // taylor_quinney < 1
   const bool heats = pts.tracks_plastic_heat();     // temperature_model = paper
   if constexpr (InLanes<Eos>::value && InLanes<Strength>::value && !Failure::active) {
-    // Groups of four points from range.begin; a group of points of different bodies, and the
-    // last points, one point at a time.
-    const std::size_t groups = (range.end - range.begin + 3) / 4;
+    // Groups of four points of one body; a group of points of different bodies, and the last
+    // points, one point at a time.
     const PointStepConstants k{model.cell_size, dt, model.taylor_quinney, model.speed_limit, model.volume_change_signal};
+    const std::size_t groups = groups_of_four(range);
 #pragma omp parallel for schedule(dynamic, kChunk / 4) reduction(max : max_signal) reduction(min : first_bad)
     for (std::size_t g = 0; g < groups; ++g) {
-      const std::size_t p = range.begin + 4 * g, n = std::min<std::size_t>(4, range.end - p);
+      // Defined in the loop, so that it takes this thread's max_signal, first_bad and sum.
       ExactSum& sum = mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum;
-      const auto b = static_cast<std::size_t>(pts.body[p]);
-      bool one_body = n == 4;
-      for (std::size_t l = 1; l < n; ++l) one_body = one_body && pts.body[p + l] == pts.body[p];
-      if (one_body) {
-        update_four<true>(pts, p, *eos_of[b], *strength_of[b], viscosity, k, volume_rate, stores, heats, sum, max_signal,
-                          first_bad);
-      } else {
-        for (std::size_t q = p; q < p + n; ++q) {
-          const auto c = static_cast<std::size_t>(pts.body[q]);
-          update_four<false>(pts, q, *eos_of[c], *strength_of[c], viscosity, k, volume_rate, stores, heats, sum,
-                             max_signal, first_bad);
-        }
-      }
+      auto points = [&](auto four, std::size_t p) __attribute__((always_inline)) {
+        const auto b = static_cast<std::size_t>(pts.body[p]);
+        update_four<decltype(four)::value>(pts, p, *eos_of[b], *strength_of[b], viscosity, k, volume_rate, stores,
+                                           heats, sum, max_signal, first_bad);
+      };
+      for_group_of_four(
+          pts, range, g, [&](std::size_t p) __attribute__((always_inline)) { points(std::true_type{}, p); },
+          [&](std::size_t q) __attribute__((always_inline)) { points(std::false_type{}, q); });
     }
   } else {
+    const Failure& failure = std::get<Failure>(model.failure);
+    const double speed_limit2 = model.speed_limit * model.speed_limit;
 #pragma omp parallel for schedule(dynamic, kChunk) reduction(max : max_signal) reduction(min : first_bad)
     for (std::size_t p = range.begin; p < range.end; ++p) {
-      PointState<D> st{pts.L[p], pts.work[p], pts.F[p], pts.E[p], pts.P[p], pts.q[p], {}, {}, 0.0};
+      PointState<D> st{};
+      st.L = pts.L[p];
+      st.work = pts.work[p];
       if (volume_rate) st.volume_rate = volume_rate[p];
-      if constexpr (Strength::has_stress) {
-        st.s = pts.s[p];
-        st.eps_p = pts.eps_p[p];
-      }
-      if constexpr (Strength::has_back_stress) st.alpha = pts.alpha[p];
-      if constexpr (Failure::active) {
-        st.failure_J = pts.failure_J[p];
-        st.damage = pts.damage[p];
-      }
-      if constexpr (Strength::has_stress) {
-        if (stores) st.E_stored = pts.E_stored[p];
-        if (heats) st.plastic_heat = pts.plastic_heat[p];
-      }
+      for_each_updated_field<Strength, Failure>(pts, st, stores, heats,
+                                                [&](auto* field, auto& x) __attribute__((always_inline)) { x = field[p]; });
       const auto b = static_cast<std::size_t>(pts.body[p]);
       const double signal =
           update_point<D>(st, *eos_of[b], *strength_of[b], viscosity, model.cell_size, dt, failure, model.taylor_quinney);
-      pts.F[p] = st.F;
-      pts.E[p] = st.E;
-      pts.P[p] = st.P;
-      pts.q[p] = st.q;
-      if constexpr (Strength::has_stress) {
-        pts.s[p] = st.s;
-        pts.eps_p[p] = st.eps_p;
-      }
-      if constexpr (Strength::has_back_stress) pts.alpha[p] = st.alpha;
-      if constexpr (Failure::active) {
-        pts.failure_J[p] = st.failure_J;
-        pts.damage[p] = st.damage;
-      }
-      if constexpr (Strength::has_stress) {
-        if (stores) pts.E_stored[p] = st.E_stored;
-        if (heats) pts.plastic_heat[p] = st.plastic_heat;
-      }
+      for_each_updated_field<Strength, Failure>(
+          pts, st, stores, heats, [&](auto* field, const auto& x) __attribute__((always_inline)) { field[p] = x; });
       mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum.add(pts.m[p] * st.work_mismatch);
       const double speed2 = dot(pts.v[p], pts.v[p]);
       if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;

@@ -30,6 +30,24 @@ struct PointRange {
   std::size_t begin = 0, end = 0;
 };
 
+// The passes that compute four points at a time (lanes.hpp) take a range in groups of four from its
+// begin: group g is the points from begin + 4 g, the last group has one to four.
+inline std::size_t groups_of_four(PointRange range) { return (range.end - range.begin + 3) / 4; }
+// Calls four(p) for group g's points p..p+3 if they are four of one body, else one(q) for each of
+// its points.
+template <class Points, class Four, class One>
+[[gnu::always_inline]] inline void for_group_of_four(const Points& pts, PointRange range, std::size_t g, Four&& four,
+                                                     One&& one) {
+  const std::size_t p = range.begin + 4 * g, n = std::min<std::size_t>(4, range.end - p);
+  bool one_body = n == 4;
+  for (std::size_t l = 1; l < n; ++l) one_body = one_body && pts.body[p + l] == pts.body[p];
+  if (one_body) {
+    four(p);
+    return;
+  }
+  for (std::size_t q = p; q < p + n; ++q) one(q);
+}
+
 template <int D>
 struct Particles {
   std::vector<Vec<D>> x, v;
