@@ -161,7 +161,8 @@ void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& 
     bins.scatter([&](std::size_t p) __attribute__((always_inline)) {
       const auto b = static_cast<std::size_t>(pts.body[p]);
       // A point that does not compress has rate 0, and adding N * 0 to a nodal rate changes no bit,
-      // so it adds its temperature (and capacity) alone. Points in uniform motion are not among
+      // so node by node it adds its temperature (and capacity) alone; the four-column rows add its
+      // zero rate too, as a test per row cost more. Points in uniform motion are not among
       // them: round-off in their nodal velocities leaves tiny compression rates (67-84 % of the
       // points of a solid 2D impact had q != 0, r down to 1e-17), so a pass over only the
       // compressing points would not save work (tried 2026-12-06: more instructions).

@@ -58,9 +58,9 @@ template <int D>
     out.v[k] = Lanes{a[component_of<D>(k, 0)], a[component_of<D>(k, 1)], a[component_of<D>(k, 2)],
                      a[component_of<D>(k, 3)]};
 }
-// The sum over the lanes of each component, nodes in order: 2D (n0 + n1) + (n2 + n3), 3D
-// ((n0 + n1) + n2) + n3, with the nodes' components aligned by shuffles so that the components add
-// in vector lanes (the same sums as lane by lane, in fewer instructions).
+// The sum over the lanes of each component: 2D (n0 + n2) + (n1 + n3), 3D ((n0 + n1) + n2) + n3,
+// with the nodes' components aligned by shuffles so that the components add in vector lanes (the
+// same sums as lane by lane, in fewer instructions).
 template <int D>
 [[gnu::always_inline]] inline Vec<D> sum_components(const RowLanes<D>& a) {
   if constexpr (D == 2) {
@@ -155,7 +155,6 @@ template <int D>
 template <int D>
 struct Columns {
   Lanes weight;    // [w0 w1 w2 w3], for a scalar field
-  Lanes gradient;  // [g0 g1 g2 g3]
   RowLanes<D> w;   // the weights repeated per component (column_lanes)
   RowLanes<D> g;   // the derivatives repeated per component
 };
@@ -163,7 +162,6 @@ template <int D>
 [[gnu::always_inline]] inline Columns<D> columns_of(const Stencil<4, D>& st) {
   Columns<D> c;
   load_lanes(c.weight, st.w[0]);
-  load_lanes(c.gradient, st.g[0]);
   column_lanes<D>(c.w, st.w[0]);
   column_lanes<D>(c.g, st.g[0]);
   return c;
