@@ -234,6 +234,7 @@ StepStatus Simulation<D>::step(double dt) {
     run(StepSlot::after_remap, &StepEffect<D>::after_remap);
   }
   c.velocity = musl ? &grid_.v_remap : &grid_.v;
+  sum_step_velocities(grid_, c.rows, *c.velocity, dt);                 // v^n_i + u_i
   const std::size_t left = kernels_.gradient_work_and_move(            // L_p, work_p, x_p
       points_, reached, grid_, stencils_, *c.velocity, dt);
   unreached_.advance(points_, dt);                                     //   the rest: x_p += v0 dt

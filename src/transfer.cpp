@@ -34,9 +34,20 @@ void remap_grid_velocity(Grid<D>& g, RowRange rows) {
   }
 }
 
+template <int D>
+void sum_step_velocities(Grid<D>& g, RowRange rows, const std::vector<Vec<D>>& u, double dt) {
+  const auto b = static_cast<std::ptrdiff_t>(g.geo.row_start(rows.begin));
+  const auto e = static_cast<std::ptrdiff_t>(g.geo.row_start(rows.end));
+#pragma omp parallel for schedule(dynamic, kChunk)
+  for (std::ptrdiff_t i = b; i < e; ++i)
+    for (int d = 0; d < D; ++d) g.v_sum[i][d] = g.v[i][d] - dt * g.a[i][d] + u[i][d];
+}
+
 template void update_grid_momentum<2>(Grid<2>&, RowRange, double);
 template void update_grid_momentum<3>(Grid<3>&, RowRange, double);
 template void remap_grid_velocity<2>(Grid<2>&, RowRange);
 template void remap_grid_velocity<3>(Grid<3>&, RowRange);
+template void sum_step_velocities<2>(Grid<2>&, RowRange, const std::vector<Vec<2>>&, double);
+template void sum_step_velocities<3>(Grid<3>&, RowRange, const std::vector<Vec<3>>&, double);
 
 }  // namespace mpmshock

@@ -60,11 +60,13 @@ struct RowRange {
 //   a        acceleration a_i = f_i / m_i
 //   v        velocity v_i^{n+1} = (p_i + dt f_i) / m_i
 //   v_remap  MUSL: the re-mapped velocity v~_i = sum N m_p v_p^{n+1} / m_i
+//   v_sum    v^n_i + u_i, the step's start velocity v^n = v^{n+1} - dt a plus the one the points
+//            move by (u: v^{n+1}, or v~ in MUSL): twice the velocity the work is taken from
 template <int D>
 struct Grid {
   GridGeometry<D> geo;
   std::vector<double> m;
-  std::vector<Vec<D>> mv, f, a, v, v_remap;
+  std::vector<Vec<D>> mv, f, a, v, v_remap, v_sum;
 
   explicit Grid(const GridGeometry<D>& g = {});
   // Zeroes mass, momentum and force on the given rows.
@@ -79,7 +81,7 @@ struct Grid {
   // Every nodal field, for the operations that must not forget one.
   template <class F>
   void for_each_field(F&& f) {
-    f(m), f(mv), f(this->f), f(a), f(v), f(v_remap);
+    f(m), f(mv), f(this->f), f(a), f(v), f(v_remap), f(v_sum);
   }
 };
 

@@ -140,6 +140,11 @@ void update_grid_momentum(Grid<D>& g, RowRange rows, double dt);
 template <int D>
 void remap_grid_velocity(Grid<D>& g, RowRange rows);
 
+// v_sum_i = v^n_i + u_i with v^n = v^{n+1} - dt a_i (grid.hpp), on the nodes of the given rows: once
+// a node, not at each of the 16 (2D) or 64 (3D) points' stencils that read it.
+template <int D>
+void sum_step_velocities(Grid<D>& g, RowRange rows, const std::vector<Vec<D>>& u, double dt);
+
 // G2P of the point velocity. FLIP: v_p += dt sum N a_i. With Blend, v_p = f v_FLIP + (1 - f) v_PIC,
 // v_PIC = sum N v_i^{n+1}: the PIC part damps point-to-point velocity noise. The kinetic energy it
 // removes becomes heat at the point (below), so total energy stays conserved to about 1e-4, not
@@ -228,7 +233,7 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
 // that is stable up to cfl 1.
 //
 // work_p = dt (V_p / m_p) sigma_p : (L_p[v^n] + L_p[v~^{n+1}]) / 2 [J/kg], with v^n = v^{n+1} - dt a
-// the nodal velocity the step started from. For FLIP points the kinetic energy changes in a step
+// the nodal velocity the step started from (v^n + u summed once a node: the grid's v_sum). For FLIP points the kinetic energy changes in a step
 // by exactly dt sum_i f_i . (v_i^n + v~_i^{n+1}) / 2 = -sum_p m_p work_p, so adding work_p to the
 // internal energy conserves kinetic + internal energy to round-off (in MUSL; USL has no v~ and
 // uses v^{n+1}, which is close but not exact). Using this averaged gradient for the kinematics
@@ -254,11 +259,10 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
       RowSums<D, true> u_sums, vn_u_sums;  // of u, and of v^n + u
       RowSums<D, false> v_sums;
       for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
-        RowLanes<D> un, vn, an, vn_u;
+        RowLanes<D> un, vn, vn_u;
         nodes.load(un, &u[row]);
         nodes.load(vn, &g.v[row]);
-        nodes.load(an, &g.a[row]);
-        for (int k = 0; k < D; ++k) vn_u.v[k] = vn.v[k] - dt * an.v[k] + un.v[k];
+        nodes.load(vn_u, &g.v_sum[row]);
         u_sums.add(r, un);
         vn_u_sums.add(r, vn_u);
         v_sums.add(r, vn);
@@ -270,7 +274,7 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
     } else {
       for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
         for (int d = 0; d < D; ++d) {
-          const double ud = u[i][d], sd = g.v[i][d] - dt * g.a[i][d] + ud;
+          const double ud = u[i][d], sd = g.v_sum[i][d];
           for (int j = 0; j < D; ++j) {
             L(d, j) += ud * dN[j];
             A(d, j) += sd * dN[j];

@@ -101,11 +101,11 @@ void smooth_pressure(Particles<D>& pts, PointRange range, const StripBins& bins,
 }
 
 // After the velocity gradient and work: tr L-bar_p in vs.volume_rate and the work corrected to the
-// smoothed tr A. `u`: the velocity L was taken from (transfer.hpp).
+// smoothed tr A, with A = L[v^n + u] from the grid's v_sum (grid.hpp, transfer.hpp).
 template <int D, class Shape>
 void smooth_volume_rate(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
                         const StencilStore<D>& store, const Halo<D>& halo, const SymmetryPlane<D>* plane,
-                        const std::vector<Vec<D>>& u, double dt, VolumetricSmoothing& vs) {
+                        double dt, VolumetricSmoothing& vs) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();
   const RowRange rows = bins.rows();
@@ -116,7 +116,7 @@ void smooth_volume_rate(Particles<D>& pts, PointRange range, const StripBins& bi
     const auto& st = stencils[p];
     double trA = 0.0;  // tr L[v^n + u], as velocity_gradient_work_and_move sums it
     for_each_node(st, geo, [&](std::size_t i, double, const Vec<D>& dN) {
-      for (int d = 0; d < D; ++d) trA += (g.v[i][d] - dt * g.a[i][d] + u[i][d]) * dN[d];
+      for (int d = 0; d < D; ++d) trA += g.v_sum[i][d] * dN[d];
     });
     vs.trace_A[p] = trA;
     const double m = pts.m[p], m_trL = m * trace(pts.L[p]), m_trA = m * trA;
@@ -159,8 +159,7 @@ class VolumetricSmoothingEffect final : public StepEffect<D> {
     smooth_pressure<D, Shape>(c.points, c.reached, c.bins, c.grid.geo, c.stencils, c.halo, c.plane, c.grid, scratch_);
   }
   void after_move(StepContext<D>& c) override {
-    smooth_volume_rate<D, Shape>(c.points, c.reached, c.bins, c.grid, c.stencils, c.halo, c.plane, *c.velocity, c.dt,
-                                 scratch_);
+    smooth_volume_rate<D, Shape>(c.points, c.reached, c.bins, c.grid, c.stencils, c.halo, c.plane, c.dt, scratch_);
     c.volume_rate = scratch_.volume_rate.data();
   }
 
