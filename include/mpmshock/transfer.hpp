@@ -258,15 +258,27 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
     if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       RowSums<D, true> u_sums, vn_u_sums;  // of u, and of v^n + u
       RowSums<D, false> v_sums;
-      for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
-        RowLanes<D> un, vn, vn_u;
+      auto u_and_v = [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
+        RowLanes<D> un, vn;
         nodes.load(un, &u[row]);
         nodes.load(vn, &g.v[row]);
-        nodes.load(vn_u, &g.v_sum[row]);
         u_sums.add(r, un);
-        vn_u_sums.add(r, vn_u);
         v_sums.add(r, vn);
-      });
+      };
+      auto vn_plus_u = [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
+        RowLanes<D> vn_u;
+        nodes.load(vn_u, &g.v_sum[row]);
+        vn_u_sums.add(r, vn_u);
+      };
+      if constexpr (D == 3) {  // the 21 vector sums of one sweep spill from AVX2's 16 registers: two sweeps
+        for_each_row(st, geo, u_and_v);
+        for_each_row(st, geo, vn_plus_u);
+      } else {
+        for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
+          u_and_v(row, r, nodes);
+          vn_plus_u(row, r, nodes);
+        });
+      }
       const Columns<D> c = columns_of(st);
       L = u_sums.gradient_of(c);
       A = vn_u_sums.gradient_of(c);
