@@ -48,7 +48,11 @@
 // whether a stencil wraps, the row loops compiled for each case, and to run their point kernels
 // inline (2026-12-06, issue 32: the same formulas, FMAs contracted anew): "default" and
 // "no_smoothing" moved (field sums by at most 2.8e-15 relative, `work` by 7.8e-13, the clock by
-// 3.4e-13), the other three bitwise unchanged.
+// 3.4e-13), the other three bitwise unchanged, and when a row wrapped round the periodic seam began
+// to load and store its two runs of memory as whole vectors and halves, its row loop compiled for
+// each of the three ways it can wrap (2026-12-07, issue 32: node_rows.hpp's RowRuns, FMAs
+// contracted anew in the new copies): "default" and "no_smoothing" moved (field sums by at most
+// 5e-15 relative, `work` by 7.7e-13, the clock by 1.9e-13), the other three bitwise unchanged.
 //
 // Bitwise where that is meaningful: floating-point results depend on the compiler and on the
 // instructions it may use (FMA contraction under -march=native), so the reference records the build

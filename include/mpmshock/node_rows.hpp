@@ -4,12 +4,13 @@
 //   2D  [x0 y0 x1 y1] [x2 y2 x3 y3]
 //   3D  [x0 y0 z0 x1] [y1 z1 x2 y2] [z2 x3 y3 z3]
 // and a column weight repeats in the same pattern (2D [w0 w0 w1 w1] [w2 w2 w3 w3]). A scalar field
-// (mass) is one vector [m0 m1 m2 m3]. A row whose columns wrap round the periodic x boundary is not
-// consecutive: its nodes are loaded and stored one by one (the components of a node that share a
-// vector's half as that half) into the same lanes. Whether a stencil wraps is decided once per
-// point and the pass's row loop compiled for each case (RowNodes): the same formulas, but the
-// compiler may contract a*b + c into FMAs differently in the two copies, so a point beside the
-// seam can differ at round-off from the same point elsewhere. The shape is factored into columns
+// (mass) is one vector [m0 m1 m2 m3]. A row whose columns wrap round the periodic x boundary lies
+// in two runs of memory, the row's last nodes and its first: each vector inside one run is still
+// one load or store, and the one across the seam is taken as halves (column_split, RowRuns). How a
+// stencil's columns lie is decided once per point and the pass's row loop compiled for each of the
+// four ways (RowNodes): the same formulas, but the compiler may contract a*b + c into FMAs
+// differently in the copies, so a point beside the seam can differ at round-off from the same
+// point elsewhere. The shape is factored into columns
 // and rows (Columns, RowFactors below), so a node's contribution differs at round-off from
 // for_each_node's (shape.hpp), which the other stencils use. Whether a stencil wraps depends only on
 // the point's x, and every node sums its points in the same order, so results stay bitwise
@@ -18,6 +19,7 @@
 
 #include <cstddef>
 #include <cstring>
+#include <utility>
 
 #include "mpmshock/grid.hpp"
 #include "mpmshock/lanes.hpp"
@@ -77,71 +79,77 @@ template <int D>
   }
 }
 
-// Whether a stencil's four columns are consecutive (no periodic wrap inside it): then a row's nodes
-// load and store as whole vectors, else node by node into the same lanes (the same numbers).
+// Where a stencil row's four nodes lie in the grid's row. Split 0: at columns c0 .. c0 + 3, one run
+// of memory. Split s = 1, 2 or 3: wrapped round the periodic seam after s nodes, which are run A,
+// the columns nx - s .. nx - 1 (from the stencil's first column), and then run B, the columns
+// 0 .. 3 - s (from the row's first node). A grid is at least four cells wide (scene.cpp), so a
+// stencil's columns are one of these.
 template <int D>
-[[gnu::always_inline]] inline bool consecutive_columns(const Stencil<4, D>& st) {
-  return st.column[3] == st.column[0] + 3;
+[[gnu::always_inline]] inline int column_split(const Stencil<4, D>& st, int nx) {
+  return st.column[3] == st.column[0] + 3 ? 0 : nx - st.column[0];
 }
 
-// Loads and stores a row of a D-vector field; `row` points at the row's node of column 0.
-template <int D>
-[[gnu::always_inline]] inline void load_row(RowLanes<D>& out, const Vec<D>* row, const int* column, bool consecutive) {
-  if (consecutive) {
-    const double* p = row[column[0]].c;
-    for (int k = 0; k < D; ++k) load_lanes(out.v[k], p + 4 * k);
-    return;
+// A row's four nodes of W doubles each (W = D for a vector field, 1 for a scalar one) are 4 W
+// doubles in order, W vectors of four; double d lies in run A if d < W * Split, else in run B.
+template <int W, int Split>
+struct RowRuns {
+  static constexpr bool in_a(int d) { return d < W * Split; }
+  // Doubles d .. d + n - 1 lie in one run, so one after another in memory.
+  static constexpr bool together(int d, int n) { return in_a(d) == in_a(d + n - 1); }
+  template <class P>
+  static P at(P a, P b, int d) {
+    return in_a(d) ? a + d : b + (d - W * Split);
   }
-  if constexpr (D == 2) {  // a vector is two whole nodes
-    for (int k = 0; k < 2; ++k) load_halves(out.v[k], row[column[2 * k]].c, row[column[2 * k + 1]].c);
-  } else {  // [x0 y0 | z0 x1] [y1 z1 | x2 y2] [z2 x3 | y3 z3]: pairs that lie together load as halves
-    const double *n0 = row[column[0]].c, *n1 = row[column[1]].c, *n2 = row[column[2]].c, *n3 = row[column[3]].c;
-    HalfLanes x0y0, y1z1, x2y2, y3z3;
-    load_half(x0y0, n0);
-    load_half(y1z1, n1 + 1);
-    load_half(x2y2, n2);
-    load_half(y3z3, n3 + 1);
-    join_halves(out.v[0], x0y0, HalfLanes{n0[2], n1[0]});
-    join_halves(out.v[1], y1z1, x2y2);
-    join_halves(out.v[2], HalfLanes{n2[2], n3[0]}, y3z3);
-  }
-}
-template <int D>
-[[gnu::always_inline]] inline void store_row(Vec<D>* row, const int* column, bool consecutive, const RowLanes<D>& v) {
-  if (consecutive) {
-    double* p = row[column[0]].c;
-    for (int k = 0; k < D; ++k) store_lanes(p + 4 * k, v.v[k]);
-    return;
-  }
-  if constexpr (D == 2) {
-    for (int k = 0; k < 2; ++k) store_halves(row[column[2 * k]].c, row[column[2 * k + 1]].c, v.v[k]);
+};
+
+// Vector K of a row's doubles: one load where its four doubles lie in one run, else its halves,
+// each one load where its two lie in one run, else two doubles (only the vector across the seam).
+template <int W, int Split, int K>
+[[gnu::always_inline]] inline void load_run_vector(Lanes& v, const double* a, const double* b) {
+  using R = RowRuns<W, Split>;
+  constexpr int d = 4 * K;
+  if constexpr (R::together(d, 4)) {
+    load_lanes(v, R::at(a, b, d));
   } else {
-    double *n0 = row[column[0]].c, *n1 = row[column[1]].c, *n2 = row[column[2]].c, *n3 = row[column[3]].c;
-    HalfLanes x0y0, z0x1, z2x3, y3z3;
-    split_halves(x0y0, z0x1, v.v[0]);
-    store_halves(n1 + 1, n2, v.v[1]);
-    split_halves(z2x3, y3z3, v.v[2]);
-    store_half(n0, x0y0);
-    store_half(n3 + 1, y3z3);
-    n0[2] = z0x1[0];
-    n1[0] = z0x1[1];
-    n2[2] = z2x3[0];
-    n3[0] = z2x3[1];
+    HalfLanes low, high;
+    if constexpr (R::together(d, 2)) load_half(low, R::at(a, b, d));
+    else low = HalfLanes{*R::at(a, b, d), *R::at(a, b, d + 1)};
+    if constexpr (R::together(d + 2, 2)) load_half(high, R::at(a, b, d + 2));
+    else high = HalfLanes{*R::at(a, b, d + 2), *R::at(a, b, d + 3)};
+    join_halves(v, low, high);
   }
 }
-// ... and of a scalar field, one node per lane.
-[[gnu::always_inline]] inline void load_scalar_row(Lanes& v, const double* row, const int* column, bool consecutive) {
-  if (consecutive)
-    load_lanes(v, row + column[0]);
-  else
-    v = Lanes{row[column[0]], row[column[1]], row[column[2]], row[column[3]]};
-}
-[[gnu::always_inline]] inline void store_scalar_row(double* row, const int* column, bool consecutive, const Lanes& v) {
-  if (consecutive) {
-    store_lanes(row + column[0], v);
-    return;
+template <int W, int Split, int K>
+[[gnu::always_inline]] inline void store_run_vector(double* a, double* b, const Lanes& v) {
+  using R = RowRuns<W, Split>;
+  constexpr int d = 4 * K;
+  if constexpr (R::together(d, 4)) {
+    store_lanes(R::at(a, b, d), v);
+  } else {
+    HalfLanes low, high;
+    split_halves(low, high, v);
+    if constexpr (R::together(d, 2)) {
+      store_half(R::at(a, b, d), low);
+    } else {
+      *R::at(a, b, d) = low[0];
+      *R::at(a, b, d + 1) = low[1];
+    }
+    if constexpr (R::together(d + 2, 2)) {
+      store_half(R::at(a, b, d + 2), high);
+    } else {
+      *R::at(a, b, d + 2) = high[0];
+      *R::at(a, b, d + 3) = high[1];
+    }
   }
-  for (int a = 0; a < 4; ++a) row[column[a]] = v[a];
+}
+template <int W, int Split, std::size_t... K>
+[[gnu::always_inline]] inline void load_run_vectors(Lanes* v, const double* a, const double* b,
+                                                    std::index_sequence<K...>) {
+  (load_run_vector<W, Split, static_cast<int>(K)>(v[K], a, b), ...);
+}
+template <int W, int Split, std::size_t... K>
+[[gnu::always_inline]] inline void store_run_vectors(double* a, double* b, const Lanes* v, std::index_sequence<K...>) {
+  (store_run_vector<W, Split, static_cast<int>(K)>(a, b, v[K]), ...);
 }
 
 // A four-column stencil's shape, factored. The node of column c in a row has
@@ -173,21 +181,28 @@ struct RowFactors {
   double gradient[D];  // [j] for j = 1 .. D-1: the same product with axis j's derivative; [0] unused
 };
 
-// A stencil row's four nodes in a nodal field, with whether its columns are consecutive known when
-// compiled, so that a pass decides it once per point and not at every load and store.
-template <bool Consecutive>
+// A stencil row's four nodes in a nodal field, with how they lie (column_split) known when compiled,
+// so that a pass decides it once per point and not at every load and store. `row` points at the
+// row's node of column 0 (the first node of run B).
+template <int Split>
 struct RowNodes {
   const int* column;
   template <int D>
   [[gnu::always_inline]] void load(RowLanes<D>& out, const Vec<D>* row) const {
-    load_row(out, row, column, Consecutive);
+    const double* first = row[column[0]].c;
+    load_run_vectors<D, Split>(out.v, first, Split == 0 ? first : row[0].c, std::make_index_sequence<D>{});
   }
   template <int D>
   [[gnu::always_inline]] void store(Vec<D>* row, const RowLanes<D>& v) const {
-    store_row(row, column, Consecutive, v);
+    double* first = row[column[0]].c;
+    store_run_vectors<D, Split>(first, Split == 0 ? first : row[0].c, v.v, std::make_index_sequence<D>{});
   }
-  [[gnu::always_inline]] void load(Lanes& out, const double* row) const { load_scalar_row(out, row, column, Consecutive); }
-  [[gnu::always_inline]] void store(double* row, const Lanes& v) const { store_scalar_row(row, column, Consecutive, v); }
+  [[gnu::always_inline]] void load(Lanes& out, const double* row) const {
+    load_run_vector<1, Split, 0>(out, row + column[0], Split == 0 ? row + column[0] : row);
+  }
+  [[gnu::always_inline]] void store(double* row, const Lanes& v) const {
+    store_run_vector<1, Split, 0>(row + column[0], Split == 0 ? row + column[0] : row, v);
+  }
 };
 
 // Visits each row of a four-column stencil: f(first node of the row, its factors, its RowNodes),
@@ -216,8 +231,12 @@ template <int D, class F>
       }
     }
   };
-  if (consecutive_columns(st)) rows(RowNodes<true>{st.column});
-  else rows(RowNodes<false>{st.column});
+  switch (column_split(st, g.nx)) {
+    case 0: rows(RowNodes<0>{st.column}); break;
+    case 1: rows(RowNodes<1>{st.column}); break;
+    case 2: rows(RowNodes<2>{st.column}); break;
+    default: rows(RowNodes<3>{st.column}); break;
+  }
 }
 
 // A gather's row sums of a D-vector field x over a stencil: sum_rows weight x_row and, With gradient,
