@@ -10,15 +10,13 @@
 // stencil's columns lie is decided once per point and the pass's row loop compiled for each of the
 // four ways (RowNodes): the same formulas, but the compiler may contract a*b + c into FMAs
 // differently in the copies, so a point beside the seam can differ at round-off from the same
-// point elsewhere. The shape is factored into columns
-// and rows (Columns, RowFactors below), so a node's contribution differs at round-off from
-// for_each_node's (shape.hpp), which the other stencils use. Whether a stencil wraps depends only on
-// the point's x, and every node sums its points in the same order, so results stay bitwise
-// independent of thread and rank counts.
+// point elsewhere. The shape is factored into columns and rows (Columns, RowFactors below), so a
+// node's contribution differs at round-off from for_each_node's (shape.hpp), which the other
+// stencils use. Whether a stencil wraps depends only on the point's x, and every node sums its
+// points in the same order, so results stay bitwise independent of thread and rank counts.
 #pragma once
 
 #include <cstddef>
-#include <cstring>
 #include <utility>
 
 #include "mpmshock/grid.hpp"
