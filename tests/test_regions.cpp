@@ -32,8 +32,8 @@ Particles<2> random_points(std::mt19937_64& rng, std::size_t n) {
   for (std::size_t k = 0; k < n; ++k) {
     const double y = 2e-3 * unit(rng);
     const Body b = y < 1e-3 ? Body::flyer : Body::target;
-    p.add(Vec<2>{{1e-4 * unit(rng), y}}, Vec<2>{{10.0 * sym(rng), -1000.0 + 50.0 * sym(rng)}}, 2700.0 * spacing * spacing,
-          spacing * spacing, b);
+    const Vec<2> velocity{{10.0 * sym(rng), -1000.0 + 50.0 * sym(rng)}};
+    p.add(Vec<2>{{1e-4 * unit(rng), y}}, velocity, 2700.0 * spacing * spacing, spacing * spacing, b);
     p.F.back()(1, 1) = 0.8 + 0.3 * unit(rng);  // compressed and stretched extents
     p.F.back()(0, 1) = 0.01 * sym(rng);
     for (int i = 0; i < 2; ++i)

@@ -50,18 +50,6 @@ typedef double HalfLanes __attribute__((vector_size(16)));
   low = __builtin_shufflevector(v, v, 0, 1);
   high = __builtin_shufflevector(v, v, 2, 3);
 }
-[[gnu::always_inline]] inline void load_halves(Lanes& v, const double* low, const double* high) {
-  HalfLanes a, b;
-  load_half(a, low);
-  load_half(b, high);
-  join_halves(v, a, b);
-}
-[[gnu::always_inline]] inline void store_halves(double* low, double* high, const Lanes& v) {
-  HalfLanes a, b;
-  split_halves(a, b, v);
-  store_half(low, a);
-  store_half(high, b);
-}
 
 // std::abs and std::copysign lane by lane: the sign bit alone, so the same bits for every input.
 [[gnu::always_inline]] inline void abs_lanes(Lanes& out, const Lanes& x) {

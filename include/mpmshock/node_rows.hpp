@@ -1,4 +1,4 @@
-// Four consecutive nodes of a stencil row in the lanes of vector registers (lanes.hpp), for the
+// The four nodes of a stencil row in the lanes of vector registers (lanes.hpp), for the
 // passes of the default four-column stencils (bspline2_domain) in 2D and 3D. A nodal vector field
 // is stored as (x, y) pairs or (x, y, z) triples, so a row's four nodes are D vectors:
 //   2D  [x0 y0 x1 y1] [x2 y2 x3 y3]
@@ -16,6 +16,7 @@
 // points in the same order, so results stay bitwise independent of thread and rank counts.
 #pragma once
 
+#include <cassert>
 #include <cstddef>
 #include <utility>
 
@@ -229,7 +230,9 @@ template <int D, class F>
       }
     }
   };
-  switch (column_split(st, g.nx)) {
+  const int split = column_split(st, g.nx);
+  assert(split >= 0 && split <= 3);  // a grid at least four cells wide (scene.cpp)
+  switch (split) {
     case 0: rows(RowNodes<0>{st.column}); break;
     case 1: rows(RowNodes<1>{st.column}); break;
     case 2: rows(RowNodes<2>{st.column}); break;

@@ -101,7 +101,8 @@ void smooth_pressure(Particles<D>& pts, PointRange range, const StripBins& bins,
 }
 
 // After the velocity gradient and work: tr L-bar_p in vs.volume_rate and the work corrected to the
-// smoothed tr A, with A = L[v^n + u] from the grid's v_sum (grid.hpp, transfer.hpp).
+// smoothed tr A, with A = L[v^n + u] from the grid's v_sum, written for the step before the move
+// (sum_step_velocities, transfer.hpp).
 template <int D, class Shape>
 void smooth_volume_rate(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
                         const StencilStore<D>& store, const Halo<D>& halo, const SymmetryPlane<D>* plane,
