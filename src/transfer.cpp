@@ -2,12 +2,22 @@
 
 namespace mpmshock {
 
+namespace {
+
+// Calls f(i) for every node i of the given rows, the nodes shared among the threads.
+template <int D, class F>
+void for_each_node_of_rows(const GridGeometry<D>& geo, RowRange rows, F&& f) {
+  const auto b = static_cast<std::ptrdiff_t>(geo.row_start(rows.begin));
+  const auto e = static_cast<std::ptrdiff_t>(geo.row_start(rows.end));
+#pragma omp parallel for schedule(dynamic, kChunk)
+  for (std::ptrdiff_t i = b; i < e; ++i) f(static_cast<std::size_t>(i));
+}
+
+}  // namespace
+
 template <int D>
 void update_grid_momentum(Grid<D>& g, RowRange rows, double dt) {
-  const auto b = static_cast<std::ptrdiff_t>(g.geo.row_start(rows.begin));
-  const auto e = static_cast<std::ptrdiff_t>(g.geo.row_start(rows.end));
-#pragma omp parallel for schedule(dynamic, kChunk)
-  for (std::ptrdiff_t i = b; i < e; ++i) {
+  for_each_node_of_rows(g.geo, rows, [&](std::size_t i) {
     const double m = g.m[i];
     if (m > 0.0) {
       const double inv_m = 1.0 / m;
@@ -19,28 +29,23 @@ void update_grid_momentum(Grid<D>& g, RowRange rows, double dt) {
       g.v[i] = g.a[i] = Vec<D>{};
     }
     g.mv[i] = Vec<D>{};
-  }
+  });
 }
 
 template <int D>
 void remap_grid_velocity(Grid<D>& g, RowRange rows) {
-  const auto b = static_cast<std::ptrdiff_t>(g.geo.row_start(rows.begin));
-  const auto e = static_cast<std::ptrdiff_t>(g.geo.row_start(rows.end));
-#pragma omp parallel for schedule(dynamic, kChunk)
-  for (std::ptrdiff_t i = b; i < e; ++i) {
+  for_each_node_of_rows(g.geo, rows, [&](std::size_t i) {
     const double m = g.m[i];
     const double inv_m = m > 0.0 ? 1.0 / m : 0.0;
     for (int d = 0; d < D; ++d) g.v_remap[i][d] = g.mv[i][d] * inv_m;
-  }
+  });
 }
 
 template <int D>
 void sum_step_velocities(Grid<D>& g, RowRange rows, const std::vector<Vec<D>>& u, double dt) {
-  const auto b = static_cast<std::ptrdiff_t>(g.geo.row_start(rows.begin));
-  const auto e = static_cast<std::ptrdiff_t>(g.geo.row_start(rows.end));
-#pragma omp parallel for schedule(dynamic, kChunk)
-  for (std::ptrdiff_t i = b; i < e; ++i)
+  for_each_node_of_rows(g.geo, rows, [&](std::size_t i) {
     for (int d = 0; d < D; ++d) g.v_sum[i][d] = g.v[i][d] - dt * g.a[i][d] + u[i][d];
+  });
 }
 
 template void update_grid_momentum<2>(Grid<2>&, RowRange, double);

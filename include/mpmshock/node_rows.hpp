@@ -79,7 +79,7 @@ template <int D>
 }
 
 // Where a stencil row's four nodes lie in the grid's row. Split 0: at columns c0 .. c0 + 3, one run
-// of memory. Split s = 1, 2 or 3: wrapped round the periodic seam after s nodes, which are run A,
+// of memory (run A). Split s = 1, 2 or 3: wrapped round the periodic seam after s nodes, which are run A,
 // the columns nx - s .. nx - 1 (from the stencil's first column), and then run B, the columns
 // 0 .. 3 - s (from the row's first node). A grid is at least four cells wide (scene.cpp), so a
 // stencil's columns are one of these.
@@ -89,10 +89,11 @@ template <int D>
 }
 
 // A row's four nodes of W doubles each (W = D for a vector field, 1 for a scalar one) are 4 W
-// doubles in order, W vectors of four; double d lies in run A if d < W * Split, else in run B.
+// doubles in order, W vectors of four; double d lies in run A if d < W * Split (every double with
+// Split 0), else in run B.
 template <int W, int Split>
 struct RowRuns {
-  static constexpr bool in_a(int d) { return d < W * Split; }
+  static constexpr bool in_a(int d) { return Split == 0 || d < W * Split; }
   // Doubles d .. d + n - 1 lie in one run, so one after another in memory.
   static constexpr bool together(int d, int n) { return in_a(d) == in_a(d + n - 1); }
   template <class P>
@@ -182,25 +183,23 @@ struct RowFactors {
 
 // A stencil row's four nodes in a nodal field, with how they lie (column_split) known when compiled,
 // so that a pass decides it once per point and not at every load and store. `row` points at the
-// row's node of column 0 (the first node of run B).
+// row's node of column 0 (the first node of run B); run A starts at the stencil's first column.
 template <int Split>
 struct RowNodes {
   const int* column;
   template <int D>
   [[gnu::always_inline]] void load(RowLanes<D>& out, const Vec<D>* row) const {
-    const double* first = row[column[0]].c;
-    load_run_vectors<D, Split>(out.v, first, Split == 0 ? first : row[0].c, std::make_index_sequence<D>{});
+    load_run_vectors<D, Split>(out.v, row[column[0]].c, row[0].c, std::make_index_sequence<D>{});
   }
   template <int D>
   [[gnu::always_inline]] void store(Vec<D>* row, const RowLanes<D>& v) const {
-    double* first = row[column[0]].c;
-    store_run_vectors<D, Split>(first, Split == 0 ? first : row[0].c, v.v, std::make_index_sequence<D>{});
+    store_run_vectors<D, Split>(row[column[0]].c, row[0].c, v.v, std::make_index_sequence<D>{});
   }
   [[gnu::always_inline]] void load(Lanes& out, const double* row) const {
-    load_run_vector<1, Split, 0>(out, row + column[0], Split == 0 ? row + column[0] : row);
+    load_run_vector<1, Split, 0>(out, row + column[0], row);
   }
   [[gnu::always_inline]] void store(double* row, const Lanes& v) const {
-    store_run_vector<1, Split, 0>(row + column[0], Split == 0 ? row + column[0] : row, v);
+    store_run_vector<1, Split, 0>(row + column[0], row, v);
   }
 };
 
