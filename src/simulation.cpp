@@ -33,15 +33,25 @@ bool bin_points(StripBins& bins, const Particles<D>& pts, PointRange range, cons
 // equation of state). Every combination the variants of model.hpp allow is instantiated by
 // std::visit, none is listed by hand; the two apart instantiate the sum of the choices, not their
 // product.
+// P2G by what the points carry: stress or not, smoothed pressure or the point's own, and the heat
+// flux's nodal sums riding on it (heat_flux_rider.hpp) or not.
+template <int D, class Shape, FluxSums Flux>
+auto to_grid_kernel(bool stress, bool smoothing) {
+  return stress ? (smoothing ? particles_to_grid<D, Shape, true, true, Flux> : particles_to_grid<D, Shape, true, false, Flux>)
+                : (smoothing ? particles_to_grid<D, Shape, false, true, Flux> : particles_to_grid<D, Shape, false, false, Flux>);
+}
+
+
 template <int D, class Shape>
-void add_transfer_kernels(Kernels<D>& k, const Model& m) {
+void add_transfer_kernels(Kernels<D>& k, const Model& m, FluxSums flux) {
   const bool stress = m.has_strength(), smoothing = m.volumetric_smoothing;
   k.support = Shape::support;
   k.first_row = Shape::template first_row<D>;
   k.bin = bin_points<D, Shape>;
   k.stencils = compute_stencils<D, Shape>;
-  k.to_grid = stress ? (smoothing ? particles_to_grid<D, Shape, true, true> : particles_to_grid<D, Shape, true>)
-                     : (smoothing ? particles_to_grid<D, Shape, false, true> : particles_to_grid<D, Shape, false>);
+  k.to_grid = flux == FluxSums::three ? to_grid_kernel<D, Shape, FluxSums::three>(stress, smoothing)
+              : flux == FluxSums::two ? to_grid_kernel<D, Shape, FluxSums::two>(stress, smoothing)
+                                      : to_grid_kernel<D, Shape, FluxSums::none>(stress, smoothing);
   const bool musl = m.scheme == UpdateScheme::musl, blend = m.flip_fraction < 1.0;
   k.velocity_to_points = musl ? (blend ? grid_to_particles_velocity<D, Shape, true, true>
                                        : grid_to_particles_velocity<D, Shape, true, false>)
@@ -51,10 +61,18 @@ void add_transfer_kernels(Kernels<D>& k, const Model& m) {
       stress ? velocity_gradient_work_and_move<D, Shape, true> : velocity_gradient_work_and_move<D, Shape, false>;
 }
 
+// The heat flux's nodal sums the transfers carry: none without the flux, two with one material (its
+// heat capacity is the nodal mass), three with several.
+FluxSums flux_sums_for(const Scene& s, const Model& m) {
+  if (!(m.heat_flux_beta > 0.0)) return FluxSums::none;
+  return s.one_material() ? FluxSums::two : FluxSums::three;
+}
+
 template <int D>
-Kernels<D> kernels_for(const Model& m) {
+Kernels<D> kernels_for(const Scene& s, const Model& m) {
   Kernels<D> k{};
-  std::visit([&](auto shape) { add_transfer_kernels<D, decltype(shape)>(k, m); }, m.shape);
+  const FluxSums flux = flux_sums_for(s, m);
+  std::visit([&](auto shape) { add_transfer_kernels<D, decltype(shape)>(k, m, flux); }, m.shape);
   std::visit([&](const auto& eos) { k.update_points = update_points_kernel<D, std::decay_t<decltype(eos)>>(m); },
              m.eos[1]);  // every body's equation of state is of one type
   return k;
@@ -131,7 +149,7 @@ template <int D>
 Simulation<D>::Simulation(const Scene& scene, const GridGeometry<D>& grid, Particles<D> points, const Clock& clock,
                           const Comm& comm)
     : comm_(&comm), whole_geo_(grid.whole()), slabs_(strip_count(grid)), model_(scene), points_(std::move(points)),
-      kernels_(kernels_for<D>(model_)), unreached_(points_.size()), clock_(clock) {
+      kernels_(kernels_for<D>(scene, model_)), unreached_(points_.size()), clock_(clock) {
   StepEffects<D> effects = effects_for<D>(scene, model_, grid);
   effects_ = std::move(effects.list);
   plane_ = effects.plane;
@@ -221,8 +239,8 @@ StepStatus Simulation<D>::step(double dt) {
   };
   grid_.reset(c.rows);                                                 // reset grid
   kernels_.stencils(points_, reached, grid_.geo, stencils_);           // N_ip, grad N_ip
-  run(StepSlot::before_to_grid, &StepEffect<D>::before_to_grid);       //   (smoothing: (P + q)-bar_p)
-  kernels_.to_grid(points_, bins_, grid_, stencils_, halo_);           // P2G: m_i, p_i, f_i
+  run(StepSlot::before_to_grid, &StepEffect<D>::before_to_grid);       //   (smoothing: (P + q)-bar_p; heat flux: T_p, r_p)
+  kernels_.to_grid(points_, bins_, grid_, stencils_, halo_, c.heat_flux);  // P2G: m_i, p_i, f_i (heat flux: C_i r_i, C_i T_i)
   run(StepSlot::after_to_grid, &StepEffect<D>::after_to_grid);         //   (plane's fold; conduction, heat flux: E_p)
   update_grid_momentum(grid_, c.rows, dt);                             // a_i, v_i^{n+1}
   run(StepSlot::after_grid_update, &StepEffect<D>::after_grid_update); //   (boundary conditions)

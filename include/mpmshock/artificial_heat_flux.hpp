@@ -21,8 +21,11 @@
 // = c_v,flyer sum_i r_i (C_i T_i - sum_p N_ip C_p T_p) = 0 at every node. T is the energy model's temperature
 // T_H(J) + (E - E_H(J)) / c_v whatever temperature_model reports (the flux moves internal energy).
 //
-// It runs after P2G on the step's stencils and bins, with the states of the step's start, folds its
-// nodal sums across a symmetry plane and sums them across MPI ranks' shared rows as conduction does.
+// Before P2G it finds each point's temperature and rate from the states of the step's start; P2G
+// scatters them (its sweep carries step 1: heat_flux_rider.hpp) and sums them across MPI ranks'
+// shared rows; after P2G the flux folds them across a symmetry plane, normalises them and gathers
+// step 2 on the step's stencils. Where conduction acts too, both move heat between the temperatures
+// of the step's start.
 #pragma once
 
 #include <array>
@@ -32,6 +35,7 @@
 
 #include "mpmshock/grid.hpp"
 #include "mpmshock/halo.hpp"
+#include "mpmshock/heat_flux_rider.hpp"
 #include "mpmshock/lanes.hpp"
 #include "mpmshock/node_rows.hpp"
 #include "mpmshock/parallel.hpp"
@@ -50,9 +54,11 @@ struct ArtificialHeatFlux {
   std::array<double, kBodies> specific_heat{};  // c_v by body
   std::array<double, kBodies> sound_speed{};    // c0 by body, the scale of the viscous pressure
   bool one_material = true;               // C_p = m_p, C_i = m_i
-  std::vector<double> point_rate;                   // r_p, by point (the step's scratch)
+  // By point, the step's scratch: T_p, and what P2G scatters (C_p r_p, C_p T_p, C_p; zero for a
+  // point in a bad state); C_p only with several materials.
+  std::vector<double> point_temperature, point_rate, point_heat, point_capacity;
   std::vector<double> node_rate, node_temperature;  // C_i r_i and C_i T_i, then r_i and T_i
-  std::vector<double> node_capacity;                // C_i, with two materials
+  std::vector<double> node_capacity;                // C_i, with several materials
 };
 
 // The exponent of a point's rate, r_p = 1 - exp(x) = -expm1(x), x = -pi^2 dt alpha_p / h^2, from its
@@ -78,10 +84,22 @@ MPMSHOCK_ONE_BODY void heat_flux_lanes(const HugoniotTemperature& model, const A
   r = q != 0.0 ? -exponential_minus_one(x) : Lanes{};
 }
 
-// Points p..p+3 (kFour: of one body) or p alone: T_p into `work`, r_p into flux.point_rate.
+// What a point gives its nodes from its temperature T, rate r and heat capacity C: C r, C T and C,
+// or nothing from a point in a bad state (a non-finite T or a rate below 0: a NaN the step will
+// report), so that the report names it and not its neighbours. A double, or four points' Lanes.
+template <class T, class Ok>
+[[gnu::always_inline]] inline void point_gives(const T& temperature, const T& rate, const T& C, const Ok& ok,
+                                                T& C_rate, T& C_temperature, T& capacity) {
+  C_rate = ok ? C * rate : T{};
+  C_temperature = ok ? C * temperature : T{};
+  capacity = ok ? C : T{};
+}
+
+// Points p..p+3 (kFour: of one body) or p alone: T_p, and what they give their nodes (point_gives).
 template <bool kFour, int D>
 [[gnu::always_inline]] inline void heat_flux_four(Particles<D>& pts, std::size_t p, const HugoniotTemperature& model,
-                                                  ArtificialHeatFlux& flux, double c0, double pi2_dt_over_h2) {
+                                                  ArtificialHeatFlux& flux, double c0, double capacity,
+                                                  double pi2_dt_over_h2) {
   Mat<D, Lanes> F;
   Lanes E, E_stored{}, failure_J{}, m, V0, q, T, r;
   load_points<kFour>(F, &pts.F[p]);
@@ -93,21 +111,32 @@ template <bool kFour, int D>
   load_points<kFour>(q, &pts.q[p]);
   const Lanes E_thermal = pts.stores_cold_work() ? E - E_stored : E;  // Particles::thermal_energy
   heat_flux_lanes<D>(model, flux, c0, pi2_dt_over_h2, F, E_thermal, failure_J, m, V0, q, T, r);
-  store_points<kFour>(&pts.work[p], T);
-  store_points<kFour>(&flux.point_rate[p], r);
+  Lanes C_rate, C_temperature, C;
+  point_gives(T, r, m * capacity, finite(T) & (r >= 0.0), C_rate, C_temperature, C);
+  store_points<kFour>(&flux.point_temperature[p], T);
+  store_points<kFour>(&flux.point_rate[p], C_rate);
+  store_points<kFour>(&flux.point_heat[p], C_temperature);
+  if (!flux.one_material) store_points<kFour>(&flux.point_capacity[p], C);
 }
 
-// Every point's temperature T_p (into pts.work, the step's scratch) and rate r_p (flux.point_rate):
+// Every point's temperature T_p and what it gives its nodes (point_gives), into the flux's scratch:
 // four points at a time where every body's temperature may be (temperature.hpp), else one by one.
-// A point that does not compress (q = 0: at rest, or expanding) has rate 0 exactly.
+// A point that does not compress (q = 0: at rest, or expanding) has rate 0 exactly. C_p is m_p
+// times c_v,b / c_v,flyer (1 with one material: m_p exactly).
 template <int D>
 void point_temperatures_and_rates(Particles<D>& pts, PointRange range, const BodyTemperatures& thermal,
                                   ArtificialHeatFlux& flux, double pi2_dt_over_h2) {
-  if (flux.point_rate.size() < pts.size()) flux.point_rate.resize(pts.size());
+  for (std::vector<double>* v : {&flux.point_temperature, &flux.point_rate, &flux.point_heat})
+    if (v->size() < pts.size()) v->resize(pts.size());
+  if (!flux.one_material && flux.point_capacity.size() < pts.size()) flux.point_capacity.resize(pts.size());
+  double capacity[kBodies] = {1.0, 1.0, 1.0};  // c_v,b / c_v,flyer
+  if (!flux.one_material)
+    for (std::size_t b = 1; b < kBodies; ++b) capacity[b] = flux.specific_heat[b] / flux.specific_heat[0];
   if (thermal.in_lanes()) {
     auto points = [&](auto four, std::size_t p) __attribute__((always_inline)) {
-      heat_flux_four<decltype(four)::value>(pts, p, thermal.of_body(pts.body[p]), flux,
-                                            flux.sound_speed[static_cast<std::size_t>(pts.body[p])], pi2_dt_over_h2);
+      const auto b = static_cast<std::size_t>(pts.body[p]);
+      heat_flux_four<decltype(four)::value>(pts, p, thermal.of_body(pts.body[p]), flux, flux.sound_speed[b],
+                                            capacity[b], pi2_dt_over_h2);
     };
     const std::size_t groups = groups_of_four(range);
 #pragma omp parallel for schedule(dynamic, kChunk / 4)
@@ -119,148 +148,130 @@ void point_temperatures_and_rates(Particles<D>& pts, PointRange range, const Bod
   }
 #pragma omp parallel for schedule(dynamic, kChunk)
   for (std::size_t p = range.begin; p < range.end; ++p) {
-    pts.work[p] = thermal.energy_temperature(pts, p);
-    const double q = pts.q[p];
-    flux.point_rate[p] =
-        q != 0.0 ? -std::expm1(rate_exponent(flux, q, pts.density(p), flux.sound_speed[static_cast<std::size_t>(pts.body[p])],
-                                             pi2_dt_over_h2))
-                 : 0.0;
+    const auto b = static_cast<std::size_t>(pts.body[p]);
+    const double T = thermal.energy_temperature(pts, p), q = pts.q[p];
+    const double r =
+        q != 0.0 ? -std::expm1(rate_exponent(flux, q, pts.density(p), flux.sound_speed[b], pi2_dt_over_h2)) : 0.0;
+    double C_rate, C_temperature, C;
+    point_gives(T, r, pts.m[p] * capacity[b], std::isfinite(T) && r >= 0.0, C_rate, C_temperature, C);
+    flux.point_temperature[p] = T;
+    flux.point_rate[p] = C_rate;
+    flux.point_heat[p] = C_temperature;
+    if (!flux.one_material) flux.point_capacity[p] = C;
   }
 }
 
-template <int D, class Shape>
-void artificial_heat_flux(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
-                          const StencilStore<D>& store, const Halo<D>& halo, const BodyTemperatures& thermal,
-                          ArtificialHeatFlux& flux, const SymmetryPlane<D>* plane, double dt) {
-  const GridGeometry<D>& geo = g.geo;
-  const auto& stencils = store.template of<Shape::support>();
+// The gather's row sums, sum_rows weight r_i (T_i - T_p), by column, from the nodal r_i and T_i.
+struct FluxRowSums {
+  Lanes sums{};
+  template <class Nodes>
+  [[gnu::always_inline]] void add(const double* node_rate, const double* node_temperature, std::size_t row,
+                                  double weight, double T_p, const Nodes& nodes) {
+    Lanes rate, temperature;
+    nodes.load(rate, node_rate + row);
+    nodes.load(temperature, node_temperature + row);
+    sums += weight * (rate * (temperature - T_p));
+  }
+  // sum_i N_ip r_i (T_i - T_p): the row sums weighed by the columns.
+  [[gnu::always_inline]] double value(const Lanes& column_weight) const {
+    const Lanes lanes = column_weight * sums;
+    return (lanes[0] + lanes[2]) + (lanes[1] + lanes[3]);
+  }
+};
+
+// Before P2G: the nodal sums zeroed on the step's rows (and an MPI rank's shared ones), the points'
+// values found, and the rider that hands them to P2G.
+template <int D>
+void start_heat_flux(Particles<D>& pts, PointRange range, const StripBins& bins, const GridGeometry<D>& geo,
+                     const Halo<D>& halo, const BodyTemperatures& thermal, ArtificialHeatFlux& flux, double dt,
+                     HeatFluxRider& rider) {
   const RowRange rows = bins.rows();
   const std::size_t first = geo.row_start(rows.begin), last = geo.row_start(rows.end);
+  const bool several = !flux.one_material;
   flux.node_rate.resize(geo.nodes());
   flux.node_temperature.resize(geo.nodes());
+  if (several) flux.node_capacity.resize(geo.nodes());
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = first; i < last; ++i) flux.node_rate[i] = flux.node_temperature[i] = 0.0;
-  halo.zero(flux.node_rate, flux.node_temperature);
-  const bool two = !flux.one_material;
-  if (two) {
-    flux.node_capacity.resize(geo.nodes());
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = first; i < last; ++i) flux.node_capacity[i] = 0.0;
-    halo.zero(flux.node_capacity);
+  for (std::size_t i = first; i < last; ++i) {
+    flux.node_rate[i] = flux.node_temperature[i] = 0.0;
+    if (several) flux.node_capacity[i] = 0.0;
   }
-  const double capacity[kBodies] = {1.0, flux.specific_heat[1] / flux.specific_heat[0],
-                                    flux.specific_heat[2] / flux.specific_heat[0]};  // c_v,b / c_v,flyer
+  halo.zero(flux.node_rate, flux.node_temperature);
+  if (several) halo.zero(flux.node_capacity);
+  point_temperatures_and_rates(pts, range, thermal, flux, M_PI * M_PI * dt / (flux.cell_size * flux.cell_size));
+  rider.rate = flux.point_rate.data();
+  rider.heat = flux.point_heat.data();
+  rider.capacity = several ? flux.point_capacity.data() : nullptr;
+  rider.node_rate = &flux.node_rate;
+  rider.node_temperature = &flux.node_temperature;
+  rider.node_capacity = several ? &flux.node_capacity : nullptr;
+}
 
-  // The step's scratch holds T_p (written again by the velocity gradient later in the step).
-  std::vector<double>& T = pts.work;
-  const double pi2_dt_over_h2 = M_PI * M_PI * dt / (flux.cell_size * flux.cell_size);
-  point_temperatures_and_rates(pts, range, thermal, flux, pi2_dt_over_h2);
-  // 1. scattered with the heat capacities where the bodies differ (a choice made once, not per node).
-  auto scatter = [&](auto materials) {
-    constexpr bool several = decltype(materials)::value;
-    bins.scatter([&](std::size_t p) __attribute__((always_inline)) {
-      const auto b = static_cast<std::size_t>(pts.body[p]);
-      // A point that does not compress has rate 0, and adding N * 0 to a nodal rate changes no bit,
-      // so node by node it adds its temperature (and capacity) alone; the four-column rows add its
-      // zero rate too, as a test per row cost more. Points in uniform motion are not among
-      // them: round-off in their nodal velocities leaves tiny compression rates (67-84 % of the
-      // points of a solid 2D impact had q != 0, r down to 1e-17), so a pass over only the
-      // compressing points would not save work (tried 2026-12-06: more instructions).
-      const double r = flux.point_rate[p];
-      // A point in a bad state (a NaN the step will report) gives its nodes nothing, so the report
-      // names it and not its neighbours.
-      if (!std::isfinite(T[p]) || !(r >= 0.0)) return;
-      const double C = several ? pts.m[p] * capacity[b] : pts.m[p], Cr = C * r, CT = C * T[p];
-      if constexpr (Shape::support == 4) {  // weighed by the columns once, then by each row (node_rows.hpp)
-        const auto& st = stencils[p];
-        const Columns<D> c = columns_of(st);
-        const Lanes Cr_columns = c.weight * Cr, CT_columns = c.weight * CT, C_columns = c.weight * C;
-        for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& f, const auto& nodes) __attribute__((always_inline)) {
-          Lanes rate;  // with r = 0 too: a test per row cost more than the adds of zero it saves
-          nodes.load(rate, &flux.node_rate[row]);
-          rate += f.weight * Cr_columns;
-          nodes.store(&flux.node_rate[row], rate);
-          Lanes temperature;
-          nodes.load(temperature, &flux.node_temperature[row]);
-          temperature += f.weight * CT_columns;
-          nodes.store(&flux.node_temperature[row], temperature);
-          if constexpr (several) {
-            Lanes capacity;
-            nodes.load(capacity, &flux.node_capacity[row]);
-            capacity += f.weight * C_columns;
-            nodes.store(&flux.node_capacity[row], capacity);
-          }
-        });
-      } else {
-        const bool rates = r > 0.0;
-        for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
-          if (rates) flux.node_rate[i] += N * Cr;
-          flux.node_temperature[i] += N * CT;
-          if constexpr (several) flux.node_capacity[i] += N * C;
-        });
-      }
-    }, [&] {
-      halo.between_colours(flux.node_rate, flux.node_temperature);
-      if constexpr (several) halo.between_colours(flux.node_capacity);
-    }, [&] {
-      halo.after_colours(flux.node_rate, flux.node_temperature);
-      if constexpr (several) halo.after_colours(flux.node_capacity);
-    });
-  };
-  if (two) scatter(std::true_type{});
-  else scatter(std::false_type{});
+// After P2G has summed C_i r_i and C_i T_i (and C_i): their mirror's share folded across a symmetry
+// plane, r_i and T_i, and step 2, E_p += c_v,p sum_i N_ip r_i (T_i - T_p).
+template <int D, class Shape>
+void finish_heat_flux(Particles<D>& pts, PointRange range, const StripBins& bins, const Grid<D>& g,
+                      const StencilStore<D>& store, ArtificialHeatFlux& flux, const SymmetryPlane<D>* plane) {
+  const GridGeometry<D>& geo = g.geo;
+  const RowRange rows = bins.rows();
+  const std::size_t first = geo.row_start(rows.begin), last = geo.row_start(rows.end);
   if (plane) {  // a symmetry plane has one material on both sides (scene.cpp)
     plane->fold_scalar(g, flux.node_rate, rows);
     plane->fold_scalar(g, flux.node_temperature, rows);
   }
-  const std::vector<double>& node_C = two ? flux.node_capacity : g.m;
+  const std::vector<double>& node_C = flux.one_material ? g.m : flux.node_capacity;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = first; i < last; ++i) {
     const double inv_m = node_C[i] > 0.0 ? 1.0 / node_C[i] : 0.0;
     flux.node_rate[i] *= inv_m;
     flux.node_temperature[i] *= inv_m;
   }
+  const auto& stencils = store.template of<Shape::support>();
+  const double* const node_rate = flux.node_rate.data();
+  const double* const node_temperature = flux.node_temperature.data();
+  const double* const T = flux.point_temperature.data();
 #pragma omp parallel for schedule(dynamic, kChunk)
   for (std::size_t p = range.begin; p < range.end; ++p) {  // 2.
     double heat = 0.0;
     if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       const auto& st = stencils[p];
-      const double T_p = T[p];
-      Lanes sums{};  // sum over rows of the row weight times r_i (T_i - T_p), by column
+      FluxRowSums sums;
       for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& f, const auto& nodes) __attribute__((always_inline)) {
-        Lanes rate, temperature;
-        nodes.load(rate, &flux.node_rate[row]);
-        nodes.load(temperature, &flux.node_temperature[row]);
-        sums += f.weight * (rate * (temperature - T_p));
+        sums.add(node_rate, node_temperature, row, f.weight, T[p], nodes);
       });
-      const Lanes lanes = columns_of(st).weight * sums;
-      heat = (lanes[0] + lanes[2]) + (lanes[1] + lanes[3]);
+      heat = sums.value(columns_of(st).weight);
     } else {
       for_each_node(stencils[p], geo, [&](std::size_t i, double N, const Vec<D>&) {
-        heat += N * flux.node_rate[i] * (flux.node_temperature[i] - T[p]);
+        heat += N * node_rate[i] * (node_temperature[i] - T[p]);
       });
     }
     pts.E[p] += flux.specific_heat[static_cast<std::size_t>(pts.body[p])] * heat;
   }
 }
 
-// The heat flux as a step effect: after P2G and the symmetry plane's fold (after conduction where
-// both act), with the states of the step's start.
+// The heat flux as a step effect: its point values before P2G, which P2G scatters (heat_flux_rider.hpp,
+// with the kernels Simulation chose at set-up for a scene with the flux: simulation.cpp,
+// flux_sums_for); after P2G and the symmetry plane's fold (after conduction where both act), the
+// nodal sums normalised and gathered.
 template <int D, class Shape>
 class ArtificialHeatFluxEffect final : public StepEffect<D> {
  public:
   ArtificialHeatFluxEffect(const BodyTemperatures& thermal, ArtificialHeatFlux constants)
       : thermal_(thermal), flux_(std::move(constants)) {}
   const char* name() const override { return "artificial heat flux"; }
-  unsigned slots() const override { return slot_bit(StepSlot::after_to_grid); }
+  unsigned slots() const override { return slot_bit(StepSlot::before_to_grid) | slot_bit(StepSlot::after_to_grid); }
+  void before_to_grid(StepContext<D>& c) override {
+    start_heat_flux<D>(c.points, c.reached, c.bins, c.grid.geo, c.halo, thermal_, flux_, c.dt, rider_);
+    c.heat_flux = &rider_;
+  }
   void after_to_grid(StepContext<D>& c) override {
-    artificial_heat_flux<D, Shape>(c.points, c.reached, c.bins, c.grid, c.stencils, c.halo, thermal_, flux_, c.plane,
-                                   c.dt);
+    finish_heat_flux<D, Shape>(c.points, c.reached, c.bins, c.grid, c.stencils, flux_, c.plane);
   }
 
  private:
   const BodyTemperatures& thermal_;
-  ArtificialHeatFlux flux_;  // the constants and the nodal scratch
+  ArtificialHeatFlux flux_;  // the constants and the scratch
+  HeatFluxRider rider_;      // what P2G carries, pointing into flux_'s scratch
 };
 
 }  // namespace mpmshock

@@ -39,7 +39,8 @@ struct Kernels {
   int (*first_row)(double y, const GridGeometry<D>&);  // the node row a point's stencil starts at
   bool (*bin)(StripBins&, const Particles<D>&, PointRange, const GridGeometry<D>&);
   void (*stencils)(const Particles<D>&, PointRange, const GridGeometry<D>&, StencilStore<D>&);
-  void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&, const StencilStore<D>&, const Halo<D>&);
+  void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&, const StencilStore<D>&, const Halo<D>&,
+                  const HeatFluxRider*);
   void (*velocity_to_points)(Particles<D>&, PointRange, const StripBins&, Grid<D>&, const StencilStore<D>&,
                              const Halo<D>&, double dt, double flip_fraction);
   std::size_t (*gradient_work_and_move)(Particles<D>&, PointRange, const Grid<D>&, const StencilStore<D>&,

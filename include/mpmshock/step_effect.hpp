@@ -21,6 +21,7 @@ namespace mpmshock {
 
 template <int D>
 class SymmetryPlane;
+struct HeatFluxRider;
 
 // What the step hands its effects: everything a grid pass needs, and what one pass leaves for the
 // step (the smoothed volume rate for the point update).
@@ -37,11 +38,13 @@ struct StepContext {
   double dt;
   const std::vector<Vec<D>>* velocity = nullptr;  // the nodal velocity the points moved by (after_move)
   const double* volume_rate = nullptr;            // the smoothed tr L per point, set in after_move
+  const HeatFluxRider* heat_flux = nullptr;  // what P2G carries for the heat
+                                             // flux, set in before_to_grid (heat_flux_rider.hpp)
 };
 
 // The slots of a step, in the order step() runs them (an effect declares them as a mask, slot_bit).
 enum class StepSlot : unsigned {
-  before_to_grid,      // before P2G (volumetric smoothing's pressure)
+  before_to_grid,      // before P2G (volumetric smoothing's pressure; the heat flux's point values)
   after_to_grid,       // after P2G, before anything reads the grid
   after_grid_update,   // after the grid momentum update: nodal v^{n+1} and a set
   before_remap,        // MUSL: after the points' momenta are scattered again

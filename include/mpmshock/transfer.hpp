@@ -5,12 +5,14 @@
 // v_i^{n+1} (USL); and the work the step's nodal forces did on each point (see below).
 #pragma once
 
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 
 #include "mpmshock/grid.hpp"
 #include "mpmshock/halo.hpp"
+#include "mpmshock/heat_flux_rider.hpp"
 #include "mpmshock/node_rows.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
@@ -68,14 +70,24 @@ void compute_stencils(const Particles<D>& pts, PointRange range, const GridGeome
   }
 }
 
-// P2G of mass, momentum and internal force, on the stencils of the step (compute_stencils).
-// On MPI ranks the rows shared with a neighbour are summed across the two (halo.hpp).
-template <int D, class Shape, bool Strength, bool Smoothed = false>
+// P2G of mass, momentum and internal force, on the stencils of the step (compute_stencils), and
+// with Flux the artificial heat flux's nodal sums, which ride on this sweep (heat_flux_rider.hpp;
+// `flux` is null without). On MPI ranks the rows shared with a neighbour are summed across the two
+// (halo.hpp).
+template <int D, class Shape, bool Strength, bool Smoothed = false, FluxSums Flux = FluxSums::none>
 void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& g, const StencilStore<D>& store,
-                       const Halo<D>& halo) {
+                       const Halo<D>& halo, [[maybe_unused]] const HeatFluxRider* flux) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();
-  halo.zero(g.m, g.mv, g.f);
+  constexpr bool rides = Flux != FluxSums::none, three = Flux == FluxSums::three;
+  assert(rides == (flux != nullptr));
+  halo.zero(g.m, g.mv, g.f);  // (the flux zeroes its own sums: they start before this sweep)
+  // The nodal sums the rows shared with another rank add across the two: the flux's too.
+  auto shared_rows = [&](auto sum) __attribute__((always_inline)) {
+    sum(g.m, g.mv, g.f);
+    if constexpr (rides) sum(*flux->node_rate, *flux->node_temperature);
+    if constexpr (three) sum(*flux->node_capacity);
+  };
   bins.scatter([&](std::size_t p) __attribute__((always_inline)) {  // inlined: pointers loaded once
     const auto& st = stencils[p];
     const double m = pts.m[p], V = pts.volume(p);
@@ -99,6 +111,8 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
         component_lanes<D>(sigma_lanes, column);
         for (int k = 0; k < D; ++k) force_columns[j].v[k] = (j == 0 ? c.g.v[k] : c.w.v[k]) * sigma_lanes.v[k];
       }
+      [[maybe_unused]] FluxColumns<Flux> flux_columns;
+      if constexpr (rides) flux_columns = FluxColumns<Flux>(*flux, p, c.weight);
       for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
         Lanes mass;
         nodes.load(mass, &g.m[row]);
@@ -115,6 +129,7 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
         }
         nodes.store(&g.mv[row], momentum);
         nodes.store(&g.f[row], force);
+        if constexpr (rides) flux_columns.add_to_row(*flux, row, r.weight, nodes);
       });
     } else {
       for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
@@ -125,9 +140,15 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
           for (int j = 1; j < D; ++j) t += sigma(d, j) * dN[j];
           g.f[i][d] -= V * t;
         }
+        if constexpr (rides) {
+          (*flux->node_rate)[i] += N * flux->rate[p];
+          (*flux->node_temperature)[i] += N * flux->heat[p];
+          if constexpr (three) (*flux->node_capacity)[i] += N * flux->capacity[p];
+        }
       });
     }
-  }, [&] { halo.between_colours(g.m, g.mv, g.f); }, [&] { halo.after_colours(g.m, g.mv, g.f); });
+  }, [&] { shared_rows([&](auto&... f) { halo.between_colours(f...); }); },
+     [&] { shared_rows([&](auto&... f) { halo.after_colours(f...); }); });
 }
 
 // Explicit momentum update on the nodes of the given rows: a_i = f_i / m_i,
