@@ -28,11 +28,6 @@ bool bin_points(StripBins& bins, const Particles<D>& pts, PointRange range, cons
   return bins.build<Shape>(pts.x, range, g);
 }
 
-// The kernels of a run, in two dispatches: the transfers by the shape function (and whether the
-// points carry stress), the point update by the laws (point_update_kernels.hpp, compiled per
-// equation of state). Every combination the variants of model.hpp allow is instantiated by
-// std::visit, none is listed by hand; the two apart instantiate the sum of the choices, not their
-// product.
 // P2G by what the points carry: stress or not, smoothed pressure or the point's own, and the heat
 // flux's nodal sums riding on it (heat_flux_rider.hpp) or not.
 template <int D, class Shape, FluxSums Flux>
@@ -41,7 +36,11 @@ auto to_grid_kernel(bool stress, bool smoothing) {
                 : (smoothing ? particles_to_grid<D, Shape, false, true, Flux> : particles_to_grid<D, Shape, false, false, Flux>);
 }
 
-
+// The kernels of a run, in two dispatches: the transfers by the shape function (and whether the
+// points carry stress), the point update by the laws (point_update_kernels.hpp, compiled per
+// equation of state). Every combination the variants of model.hpp allow is instantiated by
+// std::visit, none is listed by hand; the two apart instantiate the sum of the choices, not their
+// product (within the transfers, P2G is compiled for each of its 4 x 3 choices).
 template <int D, class Shape>
 void add_transfer_kernels(Kernels<D>& k, const Model& m, FluxSums flux) {
   const bool stress = m.has_strength(), smoothing = m.volumetric_smoothing;
@@ -239,7 +238,7 @@ StepStatus Simulation<D>::step(double dt) {
   };
   grid_.reset(c.rows);                                                 // reset grid
   kernels_.stencils(points_, reached, grid_.geo, stencils_);           // N_ip, grad N_ip
-  run(StepSlot::before_to_grid, &StepEffect<D>::before_to_grid);       //   (smoothing: (P + q)-bar_p; heat flux: T_p, r_p)
+  run(StepSlot::before_to_grid, &StepEffect<D>::before_to_grid);       //   (smoothing: (P + q)-bar_p; heat flux: T_p, C_p r_p, C_p T_p)
   kernels_.to_grid(points_, bins_, grid_, stencils_, halo_, c.heat_flux);  // P2G: m_i, p_i, f_i (heat flux: C_i r_i, C_i T_i)
   run(StepSlot::after_to_grid, &StepEffect<D>::after_to_grid);         //   (plane's fold; conduction, heat flux: E_p)
   update_grid_momentum(grid_, c.rows, dt);                             // a_i, v_i^{n+1}

@@ -56,8 +56,8 @@
 // when the artificial heat flux's scatter began to ride on P2G's sweep (2026-12-07, issue 32:
 // heat_flux_rider.hpp; written on a build without AVX-512, where the file before was written with
 // it). Built with -ffp-contract=off before and after, the four cases without heat conduction are
-// bitwise the same; with contraction they moved (field sums by at most 7e-15 relative, `work` by
-// 1.8e-12, the clock by 3.1e-13). "every_effect" moved by its physics: the flux now takes its
+// bitwise the same; with contraction, on this build against the old code's states on the same
+// build, they moved (field sums by at most 7e-15 relative, `work` by 1.8e-12, the clock by 3.1e-13). "every_effect" moved by its physics: the flux now takes its
 // temperatures from the step's start, before conduction acts in the step, not after it (field sums
 // by at most 3.2e-5 relative, the clock by 2.0e-5, `work` by 1.2e-3).
 //

@@ -8,8 +8,9 @@
 //
 // The flux fills the point values before P2G (before_to_grid) and normalises and gathers after it
 // (after_to_grid); P2G only adds, in the same order and with the same products as the flux's own
-// sweep did, so the sums are the same numbers (the same bits built with -ffp-contract=off; with
-// contraction, as the compiler fuses the new loop). The gather rides on nothing: in G2P's sweep or
+// sweep did (where that skipped a point, a point of rate 0 or in a bad state, P2G adds +0, which
+// changes no sum that starts at +0), so the sums are the same numbers (the same bits built with
+// -ffp-contract=off; with contraction, as the compiler fuses the new loop). The gather rides on nothing: in G2P's sweep or
 // the velocity gradient's it cost as much as its own (the extra fields' row offsets spill from the
 // registers: 2D, 1,212 instructions per point-step with its own sweep, 1,216 riding on G2P, 1,198
 // on the gradient pass, which would also move its heat after the FLIP/PIC blend's).
@@ -41,7 +42,7 @@ enum class FluxSums { none = 0, two = 2, three = 3 };
 // A point's scatter values weighed by its stencil's columns (node_rows.hpp), once per point.
 template <FluxSums Sums>
 struct FluxColumns {
-  Lanes rate, heat, capacity;
+  Lanes rate{}, heat{}, capacity{};
   FluxColumns() = default;
   [[gnu::always_inline]] FluxColumns(const HeatFluxRider& f, std::size_t p, const Lanes& column_weight) {
     rate = column_weight * f.rate[p];

@@ -39,11 +39,14 @@ struct InitialState {
   std::size_t window_points = 0;  // the window's, solid (window_height > 0)
 };
 
-// The step's scratch per point besides the points' own fields: the scatter bins and the stencil
-// the step's passes share.
+// The step's scratch per point besides the points' own fields: the scatter bins, the stencil the
+// step's passes share, and the artificial heat flux's T_p, C_p r_p, C_p T_p (and C_p with several
+// materials; artificial_heat_flux.hpp).
 template <int D>
 std::size_t step_scratch_bytes(const Scene& s) {
-  return StripBins::kBytesPerPoint + StencilStore<D>::bytes_per_point(support_of(s.shape_function));
+  const bool flux = s.effects.thermal && s.effects.artificial_viscosity && s.av_heat_flux > 0.0;  // as model.cpp
+  const std::size_t flux_bytes = flux ? (s.one_material() ? 3 : 4) * sizeof(double) : 0;
+  return StripBins::kBytesPerPoint + StencilStore<D>::bytes_per_point(support_of(s.shape_function)) + flux_bytes;
 }
 
 // The memory a scene's run needs, estimated from the scene alone (nothing is allocated).

@@ -38,8 +38,8 @@ struct StepContext {
   double dt;
   const std::vector<Vec<D>>* velocity = nullptr;  // the nodal velocity the points moved by (after_move)
   const double* volume_rate = nullptr;            // the smoothed tr L per point, set in after_move
-  const HeatFluxRider* heat_flux = nullptr;  // what P2G carries for the heat
-                                             // flux, set in before_to_grid (heat_flux_rider.hpp)
+  // What P2G carries for the artificial heat flux, set in before_to_grid (heat_flux_rider.hpp).
+  const HeatFluxRider* heat_flux = nullptr;
 };
 
 // The slots of a step, in the order step() runs them (an effect declares them as a mask, slot_bit).

@@ -81,12 +81,13 @@ void particles_to_grid(const Particles<D>& pts, const StripBins& bins, Grid<D>& 
   const auto& stencils = store.template of<Shape::support>();
   constexpr bool rides = Flux != FluxSums::none, three = Flux == FluxSums::three;
   assert(rides == (flux != nullptr));
+  assert(!three || (flux->capacity && flux->node_capacity));
   halo.zero(g.m, g.mv, g.f);  // (the flux zeroes its own sums: they start before this sweep)
   // The nodal sums the rows shared with another rank add across the two: the flux's too.
   auto shared_rows = [&](auto sum) __attribute__((always_inline)) {
-    sum(g.m, g.mv, g.f);
-    if constexpr (rides) sum(*flux->node_rate, *flux->node_temperature);
-    if constexpr (three) sum(*flux->node_capacity);
+    if constexpr (three) sum(g.m, g.mv, g.f, *flux->node_rate, *flux->node_temperature, *flux->node_capacity);
+    else if constexpr (rides) sum(g.m, g.mv, g.f, *flux->node_rate, *flux->node_temperature);
+    else sum(g.m, g.mv, g.f);
   };
   bins.scatter([&](std::size_t p) __attribute__((always_inline)) {  // inlined: pointers loaded once
     const auto& st = stencils[p];
