@@ -138,7 +138,7 @@ Model::Model(const Scene& s, const std::array<const Material*, kBodies>& m)
   symmetry_plane = s.symmetry == Symmetry::on;
   skip_unreached = s.skip_unreached;
   volumetric_smoothing = s.volumetric_smoothing == Smoothing::on;
-  if (s.effects.thermal && s.effects.artificial_viscosity) heat_flux_beta = s.av_heat_flux;
+  if (s.has_heat_flux()) heat_flux_beta = s.av_heat_flux;
   diffusion_number = s.dimension == 3 ? 0.15 : 0.2;
   if (s.effects.heat_conduction)
     for (std::size_t b = 0; b < kBodies; ++b) {

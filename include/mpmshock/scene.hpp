@@ -169,9 +169,11 @@ struct Scene {
   double velocity_of(Body b) const { return b == Body::flyer ? flyer_velocity : 0.0 - target_velocity; }
   // The faster body's speed toward the impact plane.
   double fastest_body_speed() const;
-  // Material-point spacing h / ppc.
+  // Whether the artificial heat flux acts: it needs temperatures and the viscosity it follows.
+  bool has_heat_flux() const { return effects.thermal && effects.artificial_viscosity && av_heat_flux > 0.0; }
   // Points carry their plastic heat W_p when some output reports the paper's temperature T_H + W_p/c_v.
   bool tracks_plastic_heat() const { return temperature_model == TemperatureModel::paper || paper_temperature; }
+  // Material-point spacing h / ppc.
   double particle_spacing() const { return cell_size / static_cast<double>(particles_per_cell); }
   // Empty space kept on the grid beyond each body's free surface.
   double derived_grid_margin() const;

@@ -44,8 +44,7 @@ struct InitialState {
 // materials; artificial_heat_flux.hpp).
 template <int D>
 std::size_t step_scratch_bytes(const Scene& s) {
-  const bool flux = s.effects.thermal && s.effects.artificial_viscosity && s.av_heat_flux > 0.0;  // as model.cpp
-  const std::size_t flux_bytes = flux ? (s.one_material() ? 3 : 4) * sizeof(double) : 0;
+  const std::size_t flux_bytes = s.has_heat_flux() ? (s.one_material() ? 3 : 4) * sizeof(double) : 0;
   return StripBins::kBytesPerPoint + StencilStore<D>::bytes_per_point(support_of(s.shape_function)) + flux_bytes;
 }
 
