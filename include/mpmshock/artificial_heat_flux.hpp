@@ -80,8 +80,11 @@ MPMSHOCK_ONE_BODY void heat_flux_lanes(const HugoniotTemperature& model, const A
   const Lanes J = det(F);
   const Lanes J_material = failure_J > 0.0 ? minimum(J, failure_J) : J;  // Particles::material_J
   model.temperature_lanes(T, J_material, E_thermal);
+  const LaneBits compressing = q != 0.0;
+  r = Lanes{};
+  if (!any(compressing)) return;  // (the lanes' rates are 0 either way)
   const Lanes x = rate_exponent(flux, q, m / (V0 * J_material), c0, pi2_dt_over_h2);
-  r = q != 0.0 ? -exponential_minus_one(x) : Lanes{};
+  r = compressing ? -exponential_minus_one(x) : Lanes{};
 }
 
 // What a point gives its nodes from its temperature T, rate r and heat capacity C: C r, C T and C,

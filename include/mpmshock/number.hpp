@@ -123,14 +123,18 @@ inline double exponential_minus_one(double x) { return std::expm1(x); }
                                             1.0 / 24,      1.0 / 120,      1.0 / 720,         1.0 / 5040,
                                             1.0 / 40320,   1.0 / 362880,   1.0 / 3628800,     1.0 / 39916800,
                                             1.0 / 479001600, 1.0 / 6227020800, 1.0 / 87178291200};
-  Lanes p = Lanes{} + kInverseFactorial[14];
-  for (int k = 13; k >= 2; --k) p = p * x + kInverseFactorial[k];
-  const Lanes series = x + x * (x * p);  // x + x^2/2 + ... + x^14/14!
-  Lanes e;
-  exp_lanes(e, x);
   Lanes magnitude;
   abs_lanes(magnitude, x);
-  return magnitude <= 0.34657359027997264 ? (x == 0.0 ? x : series) : e - 1.0;  // -0 stays -0
+  const LaneBits small = magnitude <= 0.34657359027997264;  // (NaN: not small)
+  // Each form only where a lane takes it: the lanes' values are the same either way.
+  Lanes series{}, e{};
+  if (any(small)) {
+    Lanes p = Lanes{} + kInverseFactorial[14];
+    for (int k = 13; k >= 2; --k) p = p * x + kInverseFactorial[k];
+    series = x + x * (x * p);  // x + x^2/2 + ... + x^14/14!
+  }
+  if (any(~small)) exp_lanes(e, x);
+  return small ? (x == 0.0 ? x : series) : e - 1.0;  // -0 stays -0
 }
 
 }  // namespace mpmshock

@@ -70,16 +70,22 @@ class HugoniotTemperature {
   void temperature_lanes(Lanes& T, const Lanes& J, const Lanes& E) const {
     // The table between J_min and 1 (hugoniot_temperature): the interval k = floor(u) of each
     // lane, held within the table for the lanes that take another branch.
-    const Lanes u = (1.0 - J) / dJ_;
-    const double last = static_cast<double>(table_.size() - 2);
-    const Lanes held = u >= 0.0 ? (u <= last ? u : Lanes{} + last) : Lanes{};  // NaN: 0
-    const LaneInts k = __builtin_convertvector(held, LaneInts);
-    const Lanes below{table_[k[0]], table_[k[1]], table_[k[2]], table_[k[3]]};
-    const Lanes above{table_[k[0] + 1], table_[k[1] + 1], table_[k[2] + 1], table_[k[3] + 1]};
-    const Lanes frac = u - __builtin_convertvector(k, Lanes);
-    Lanes T_H = u < last + 1.0 ? below + frac * (above - below) : Lanes{} + table_.back();
-    T_H = J >= J_min_ ? T_H : Lanes{} + std::numeric_limits<double>::infinity();
-    T_H = J >= 1.0 ? T0_ * exponential(gamma0_ * (1.0 - J)) : T_H;
+    // Each branch only where a lane takes it (uncompressed material: only the tension branch's):
+    // the lanes' values are the same either way.
+    const LaneBits tension = J >= 1.0;  // (NaN: the table's branch)
+    Lanes T_H{};
+    if (any(~tension)) {
+      const Lanes u = (1.0 - J) / dJ_;
+      const double last = static_cast<double>(table_.size() - 2);
+      const Lanes held = u >= 0.0 ? (u <= last ? u : Lanes{} + last) : Lanes{};  // NaN: 0
+      const LaneInts k = __builtin_convertvector(held, LaneInts);
+      const Lanes below{table_[k[0]], table_[k[1]], table_[k[2]], table_[k[3]]};
+      const Lanes above{table_[k[0] + 1], table_[k[1] + 1], table_[k[2] + 1], table_[k[3] + 1]};
+      const Lanes frac = u - __builtin_convertvector(k, Lanes);
+      T_H = u < last + 1.0 ? below + frac * (above - below) : Lanes{} + table_.back();
+      T_H = J >= J_min_ ? T_H : Lanes{} + std::numeric_limits<double>::infinity();
+    }
+    if (any(tension)) T_H = tension ? T0_ * exponential(gamma0_ * (1.0 - J)) : T_H;
     T = T_H + (E - eos_.hugoniot_energy(J)) / cv_;
   }
 
