@@ -304,6 +304,16 @@ struct TensorShape {
   static int first_row(double y, const GridGeometry<D>& g) {
     return Rule::base((y - g.y_min) * g.inv_h);
   }
+  // ... of four points at heights y, lane by lane: what first_row gives each.
+  template <int D>
+  [[gnu::always_inline]] static void first_rows(LaneInts& rows, const Lanes& y, const GridGeometry<D>& g) {
+    const Lanes u = (y - g.y_min) * g.inv_h;
+    if constexpr (Rule::kLanes) {
+      Rule::base(rows, u);
+    } else {
+      for (int l = 0; l < 4; ++l) rows[l] = Rule::base(u[l]);
+    }
+  }
   // The stencil of a point at x with deformation gradient F (only the point domains use F).
   template <int D>
   [[gnu::always_inline]] static Stencil<S, D> at(const Vec<D>& x, const GridGeometry<D>& g, const Mat<D>& F) {

@@ -5,10 +5,13 @@
 // odd strip, points in storage order), so results do not depend on the number of threads.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "mpmshock/grid.hpp"
+#include "mpmshock/lanes.hpp"
 #include "mpmshock/parallel.hpp"
 #include "mpmshock/particles.hpp"
 
@@ -67,14 +70,25 @@ bool StripBins::build(const std::vector<Vec<D>>& x, PointRange range, const Grid
 
   int lo = last_row, hi = 0;
   bool inside = true;
-#pragma omp parallel for schedule(dynamic, kChunk) reduction(min : lo) reduction(max : hi) reduction(&& : inside)
-  for (std::size_t p = first; p < end; ++p) {
-    const int row = Shape::first_row(x[p][1], g);
-    inside = inside && row >= 0 && row <= last_row;
-    const int r = row < 0 ? 0 : (row > last_row ? last_row : row);
-    lo = r < lo ? r : lo;
-    hi = r > hi ? r : hi;
-    strip_of_[p] = r / kRowsPerStrip;
+  // Four points at a time (the rows of the last group's spare lanes are its last point's).
+  const std::size_t groups = (end - first + 3) / 4;
+#pragma omp parallel for schedule(dynamic, kChunk / 4) reduction(min : lo) reduction(max : hi) reduction(&& : inside)
+  for (std::size_t k = 0; k < groups; ++k) {
+    const std::size_t p = first + 4 * k, n = std::min<std::size_t>(4, end - p);
+    Lanes y;
+    for (std::size_t l = 0; l < 4; ++l) y[l] = x[p + std::min(l, n - 1)][1];
+    LaneInts row;
+    Shape::first_rows(row, y, g);
+    const LaneInts r = row < 0 ? LaneInts{} : (row > last_row ? LaneInts{} + last_row : row);
+    const LaneInts strip = r / kRowsPerStrip;
+    const LaneInts out = (row < 0) | (row > last_row);  // -1 where outside
+    const int lo4 = std::min(std::min(r[0], r[1]), std::min(r[2], r[3]));
+    const int hi4 = std::max(std::max(r[0], r[1]), std::max(r[2], r[3]));
+    lo = lo4 < lo ? lo4 : lo;
+    hi = hi4 > hi ? hi4 : hi;
+    inside = inside && ((out[0] | out[1]) | (out[2] | out[3])) == 0;
+    if (n == 4) std::memcpy(&strip_of_[p], &strip, sizeof strip);
+    else for (std::size_t l = 0; l < n; ++l) strip_of_[p + l] = strip[l];
   }
   if (!inside) return false;
   for (std::size_t p = first; p < end; ++p) ++start_[static_cast<std::size_t>(strip_of_[p]) + 1];
