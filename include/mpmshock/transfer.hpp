@@ -273,9 +273,11 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
                                             const StencilStore<D>& store, const std::vector<Vec<D>>& u, double dt) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();
-  const int last_row = geo.ny - Shape::support;
-  std::size_t first_out = kNoPoint;
-#pragma omp parallel for schedule(dynamic, kChunk) reduction(min : first_out)
+  // The lowest and highest y the points move to (and whether one is NaN): the rows a point's
+  // stencil starts at grow with its y, so if the extremes' rows are on the grid, every point's is.
+  double y_low = std::numeric_limits<double>::infinity(), y_high = -y_low;
+  bool nan = false;
+#pragma omp parallel for schedule(dynamic, kChunk) reduction(min : y_low) reduction(max : y_high) reduction(|| : nan)
   for (std::size_t p = range.begin; p < range.end; ++p) {
     const auto& st = stencils[p];
     Mat<D> L{};  // L[u]
@@ -339,10 +341,19 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
       c = c < 0.0 ? c + period : (c >= period ? c - period : c);
       x[d] = c < period ? c : 0.0;  // c + period can round up to period
     }
-    const int row = Shape::first_row(x[1], geo);
-    if (!(row >= 0 && row <= last_row)) first_out = p < first_out ? p : first_out;
+    y_low = x[1] < y_low ? x[1] : y_low;
+    y_high = x[1] > y_high ? x[1] : y_high;
+    nan = nan || x[1] != x[1];
   }
-  return first_out;
+  const int last_row = geo.ny - Shape::support;
+  auto on_grid = [&](double y) {
+    const int row = Shape::first_row(y, geo);
+    return row >= 0 && row <= last_row;
+  };
+  if (range.end <= range.begin || (!nan && on_grid(y_low) && on_grid(y_high))) return kNoPoint;
+  for (std::size_t p = range.begin; p < range.end; ++p)  // rare: the run stops
+    if (!on_grid(pts.x[p][1])) return p;
+  return kNoPoint;
 }
 
 }  // namespace mpmshock
