@@ -11,7 +11,7 @@ void Particles<D>::add(const Vec<D>& position, const Vec<D>& velocity, double ma
   V0.push_back(volume0);
   F.push_back(Mat<D>::identity());
   L.push_back(Mat<D>{});
-  for (auto* f : {&work, &E, &P, &q}) f->push_back(0.0);
+  for (auto* f : {&work, &E, &P, &q, &work_mismatch}) f->push_back(0.0);
   if (strength_) {
     s.push_back({});
     eps_p.push_back(0.0);

@@ -146,7 +146,8 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
   if (!(std::isfinite(run.clock.time) && run.clock.time >= 0.0)) bad("its time is not a time");
   if (run.clock.steps < 0) bad("its step count is negative");
   if (!(std::isfinite(run.clock.max_signal) && run.clock.max_signal > 0.0)) bad("its signal speed is not positive");
-  if (!std::isfinite(run.clock.work_mismatch)) bad("its work_mismatch is not finite");
+  if (!std::isfinite(run.clock.work_mismatch) || !std::isfinite(run.clock.work_mismatch_before))
+    bad("its work_mismatch is not finite");
   if (!(std::isfinite(run.schedule.last_dt) && run.schedule.last_dt >= 0.0)) bad("its last time step is not a time");
   const int index = run.schedule.snapshot_index;
   if (index < 0 || index > 99999) bad("its snapshot_index " + std::to_string(index) + " is out of range");
@@ -182,7 +183,8 @@ void validate_restart(const Restart<D>& r, const Scene& scene, const GridGeometr
     const std::size_t count = values.size() * sizeof(values[0]) / sizeof(double);
     return std::all_of(d, d + count, [](double v) { return std::isfinite(v); });
   };
-  for (const auto* field : {&p.m, &p.V0, &p.E, &p.P, &p.q, &p.eps_p, &p.failure_J, &p.damage, &p.plastic_heat})
+  for (const auto* field : {&p.m, &p.V0, &p.E, &p.P, &p.q, &p.eps_p, &p.failure_J, &p.damage, &p.plastic_heat,
+                            &p.work_mismatch})
     if (!finite(*field)) bad("it holds a value that is not a finite number (NaN or infinity)");
   if (p.has_failure() != scene.effects.spall)
     bad(std::string("its scene has spall = ") + (scene.effects.spall ? "on" : "off") + " but it holds " +

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "mpmshock/artificial_heat_flux.hpp"
+#include "mpmshock/exact_sum.hpp"
 #include "mpmshock/heat_conduction.hpp"
 #include "mpmshock/point_update_kernels.hpp"
 #include "mpmshock/shape.hpp"
@@ -264,8 +265,6 @@ StepStatus Simulation<D>::step(double dt) {
   clock_.time += dt;
   ++clock_.steps;
   clock_.max_signal = std::max(update.max_signal, unreached_.signal());
-  if (comm_->parallel()) pending_mismatch_.push_back(update.work_mismatch);  // settle() sums them
-  else clock_.work_mismatch += update.work_mismatch.value();
   if (!failed.ok()) return failed;
   unreached_.follow(points_);                                          // compute what the step reached
   if (comm_->parallel()) migrate();                                    // MPI: points into their new slabs
@@ -284,10 +283,14 @@ bool Simulation<D>::bins_within_slab() const {
 
 template <int D>
 void Simulation<D>::settle() {
-  if (pending_mismatch_.empty()) return;
-  comm_->sum(pending_mismatch_.data(), static_cast<int>(pending_mismatch_.size()));
-  for (const ExactSum& step : pending_mismatch_) clock_.work_mismatch += step.value();  // in step order, as one rank
-  pending_mismatch_.clear();
+  // Exact: the same bits however the points are shared between threads and ranks.
+  ExactSum sum;
+  const std::vector<double>& own = points_.work_mismatch;
+  std::size_t p = 0;
+  for (; p + 4 <= own.size(); p += 4) sum.add_lanes(Lanes{own[p], own[p + 1], own[p + 2], own[p + 3]});
+  for (; p < own.size(); ++p) sum.add(own[p]);
+  comm_->sum(&sum, 1);
+  clock_.work_mismatch = clock_.work_mismatch_before + sum.value();
 }
 
 template <int D>

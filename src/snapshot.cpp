@@ -193,6 +193,7 @@ Columns<D> restart_columns(hid_t g, const Particles<D>& layout, const RunState& 
   const hsize_t C = kDeviatorComponents<D>;
   h5::write_double_attribute(g, "max_signal", run.clock.max_signal);
   h5::write_double_attribute(g, "work_mismatch", run.clock.work_mismatch);
+  h5::write_double_attribute(g, "work_mismatch_before", run.clock.work_mismatch_before);
   if (run.clock.unreached_tail != Clock::kNoneSaved) {  // ids of the simulated points (unreached.hpp)
     h5::write_int_attribute(g, "unreached_head", static_cast<std::int64_t>(run.clock.unreached_head));
     h5::write_int_attribute(g, "unreached_tail", static_cast<std::int64_t>(run.clock.unreached_tail));
@@ -210,6 +211,10 @@ Columns<D> restart_columns(hid_t g, const Particles<D>& layout, const RunState& 
   const std::string components = D == 2 ? "xx, yy, xy (zz = -(xx + yy))" : "xx, yy, xy, yz, zx (zz = -(xx + yy))";
   Columns<D> c;
   c.push_back(field<D>(g, "volume0", {}, D == 2 ? "m2" : "m3", "reference volume V0", {1}, &Particles<D>::V0));
+  c.push_back(field<D>(g, "work_mismatch", {}, D == 2 ? "J/m" : "J",
+                       "the point's own running sum of m (work - own trapezoid work); work_mismatch is their "
+                       "exact sum plus work_mismatch_before",
+                       {}, &Particles<D>::work_mismatch));
   if (layout.has_strength())
     c.push_back(field<D>(g, "deviatoric_stress", {C}, "Pa", "deviatoric stress s: " + components, {},
                          &Particles<D>::s));
@@ -669,6 +674,11 @@ Restart<D> read_state(const std::string& path, const PointChooser& choose) {
     const hid_t g = rg.get();
     run.clock.max_signal = h5::read_double_attribute(g, "max_signal");
     run.clock.work_mismatch = h5::has_attribute(g, "work_mismatch") ? h5::read_double_attribute(g, "work_mismatch") : 0.0;
+    // Without the points' own sums (an older snapshot), its total is carried as what came before.
+    const bool own_mismatch = h5::has_link(g, "work_mismatch");
+    run.clock.work_mismatch_before =
+        !own_mismatch ? run.clock.work_mismatch
+                      : (h5::has_attribute(g, "work_mismatch_before") ? h5::read_double_attribute(g, "work_mismatch_before") : 0.0);
     if (h5::has_attribute(g, "unreached_tail")) {
       const std::int64_t head = h5::read_int_attribute(g, "unreached_head"), tail = h5::read_int_attribute(g, "unreached_tail");
       if (head < 0 || tail < head) throw std::runtime_error("/restart unreached_head and unreached_tail are not a range");
@@ -729,6 +739,7 @@ Restart<D> read_state(const std::string& path, const PointChooser& choose) {
                                                                                : "/particles/artificial_viscosity",
                            n, {}, rows);
     p.work.assign(m, 0.0);
+    p.work_mismatch = own_mismatch ? h5::read_doubles(g, "work_mismatch", n, {}, rows) : std::vector<double>(m, 0.0);
     p.enable_strength(strength, back);
     if (strength) {
       unflatten(h5::read_doubles(g, "deviatoric_stress", n, {C}, rows), p.s);

@@ -16,7 +16,6 @@
 #include <type_traits>
 #include <vector>
 
-#include "mpmshock/exact_sum.hpp"
 #include "mpmshock/model.hpp"
 #include "mpmshock/number.hpp"
 #include "mpmshock/parallel.hpp"
@@ -163,7 +162,6 @@ struct StressUpdateResult {
   // the next dt is cfl h over it.
   double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};  // lowest index of a point in a bad state, if any
-  ExactSum work_mismatch;                   // sum of m (work - own trapezoid work) over the points [J]
 };
 
 // Whether a law's part of the point update is written for Lanes as well as a double: its
@@ -226,8 +224,8 @@ template <class Strength, class Failure, int D, class State, class F>
 template <bool kFour, int D, class Eos, class Strength, class Viscosity>
 [[gnu::always_inline]] inline void update_four(Particles<D>& pts, std::size_t p, const Eos& eos, const Strength& strength,
                                                const Viscosity& viscosity, const PointStepConstants& k,
-                                               const double* volume_rate, bool stores, bool heats, ExactSum& mismatch,
-                                               double& max_signal, std::size_t& first_bad) {
+                                               const double* volume_rate, bool stores, bool heats, double& max_signal,
+                                               std::size_t& first_bad) {
   PointState<D, Lanes> st;
   load_points<kFour>(st.L, &pts.L[p]);
   load_points<kFour>(st.work, &pts.work[p]);
@@ -247,9 +245,13 @@ template <bool kFour, int D, class Eos, class Strength, class Viscosity>
   largest = checks.sound > largest ? checks.sound : largest;
   largest = checks.volume > largest ? checks.volume : largest;
   max_signal = std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3]));
-  Lanes m;
+  // Each point's own running sum of m (work - own work): the same bits in any group (per point).
+  Lanes m, mismatch;
   load_points<kFour>(m, &pts.m[p]);
-  mismatch.add_lanes(m * st.work_mismatch, kFour ? 4 : 1);
+  load_points<kFour>(mismatch, &pts.work_mismatch[p]);
+  mismatch += m * st.work_mismatch;
+  if constexpr (kFour) store_points<kFour>(&pts.work_mismatch[p], mismatch);
+  else pts.work_mismatch[p] = mismatch[0];
   if (any(checks.bad))
     for (std::size_t l = 0; l < (kFour ? 4 : 1); ++l)
       if (checks.bad[l]) first_bad = std::min(first_bad, p + l);
@@ -268,11 +270,6 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
   const Viscosity& viscosity = std::get<Viscosity>(model.viscosity);
   double max_signal = 0.0;
   std::size_t first_bad = ~std::size_t{0};
-  // The mismatch summed exactly, a sum per thread: the same bits for any thread and rank count.
-  struct alignas(64) ThreadSum {
-    ExactSum sum;
-  };
-  std::vector<ThreadSum> mismatch(static_cast<std::size_t>(omp_get_max_threads()));
   const bool stores = pts.stores_cold_work();       // taylor_quinney < 1
   const bool heats = pts.tracks_plastic_heat();     // temperature_model = paper
   if constexpr (InLanes<Eos>::value && InLanes<Strength>::value && !Failure::active) {
@@ -282,12 +279,11 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
     const std::size_t groups = groups_of_four(range);
 #pragma omp parallel for schedule(dynamic, kChunk / 4) reduction(max : max_signal) reduction(min : first_bad)
     for (std::size_t g = 0; g < groups; ++g) {
-      // Defined in the loop, so that it takes this thread's max_signal, first_bad and sum.
-      ExactSum& sum = mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum;
+      // Defined in the loop, so that it takes this thread's max_signal and first_bad.
       auto points = [&](auto four, std::size_t p) __attribute__((always_inline)) {
         const auto b = static_cast<std::size_t>(pts.body[p]);
         update_four<decltype(four)::value>(pts, p, *eos_of[b], *strength_of[b], viscosity, k, volume_rate, stores,
-                                           heats, sum, max_signal, first_bad);
+                                           heats, max_signal, first_bad);
       };
       for_group_of_four(
           pts, range, g, [&](std::size_t p) __attribute__((always_inline)) { points(std::true_type{}, p); },
@@ -309,16 +305,14 @@ StressUpdateResult update_all_points(Particles<D>& pts, PointRange range, const 
           update_point<D>(st, *eos_of[b], *strength_of[b], viscosity, model.cell_size, dt, failure, model.taylor_quinney);
       for_each_updated_field<Strength, Failure>(
           pts, st, stores, heats, [&](auto* field, const auto& x) __attribute__((always_inline)) { field[p] = x; });
-      mismatch[static_cast<std::size_t>(omp_get_thread_num())].sum.add(pts.m[p] * st.work_mismatch);
+      pts.work_mismatch[p] += pts.m[p] * st.work_mismatch;
       const double speed2 = dot(pts.v[p], pts.v[p]);
       if (!(signal >= 0.0) || !(speed2 < speed_limit2)) first_bad = p < first_bad ? p : first_bad;
       max_signal = std::max(
           {max_signal, std::sqrt(speed2) + signal, model.volume_change_signal * std::abs(volume_rate_of(st))});
     }
   }
-  ExactSum total_mismatch;
-  for (const ThreadSum& t : mismatch) total_mismatch += t.sum;
-  return {max_signal, first_bad, total_mismatch};
+  return {max_signal, first_bad};
 }
 
 // The signal speed of the fastest point in its current state (|v| + longitudinal sound speed),

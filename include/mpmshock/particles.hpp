@@ -14,6 +14,8 @@
 //   E_stored   the part of E stored as cold work, not heat [J/kg] (taylor_quinney < 1)
 //   plastic_heat  the plastic work turned to heat so far [J/kg] (temperature_model = paper)
 //   work       the work of the last step's nodal forces on the point [J/kg] (scratch of a step)
+//   work_mismatch  m (work - the trapezoid-rule work of the point's own deformation), summed over
+//              its steps [J]: conservation.csv's work_mismatch is their exact sum (constitutive.hpp)
 #pragma once
 
 #include <algorithm>
@@ -54,6 +56,7 @@ struct Particles {
   std::vector<double> m, V0;
   std::vector<Mat<D>> F, L;
   std::vector<double> work, E, P, q;
+  std::vector<double> work_mismatch;
   std::vector<Deviator<D>> s, alpha;
   std::vector<double> eps_p;
   std::vector<double> failure_J, damage;
@@ -101,7 +104,8 @@ struct Particles {
   template <class F>
   void for_each_member(F&& f) const {
     f(&Particles::x), f(&Particles::v), f(&Particles::m), f(&Particles::V0), f(&Particles::F), f(&Particles::L);
-    f(&Particles::work), f(&Particles::E), f(&Particles::P), f(&Particles::q), f(&Particles::id), f(&Particles::body);
+    f(&Particles::work), f(&Particles::E), f(&Particles::P), f(&Particles::q), f(&Particles::work_mismatch);
+    f(&Particles::id), f(&Particles::body);
     if (strength_) f(&Particles::s), f(&Particles::eps_p);
     if (back_stress_) f(&Particles::alpha);
     if (failure_) f(&Particles::failure_J), f(&Particles::damage);

@@ -54,8 +54,12 @@ struct Clock {
   std::int64_t steps = 0;
   double max_signal = 0.0;  // fastest signal of the last step; sets the next time step
   // Running sum over steps and points of m (work - own trapezoid work): the internal energy the
-  // points hold beyond what their own deformation did on them [J] (constitutive.hpp).
+  // points hold beyond what their own deformation did on them [J] (constitutive.hpp). The exact sum
+  // of the points' own sums (Particles::work_mismatch), taken by Simulation::settle(), plus
+  // work_mismatch_before.
   double work_mismatch = 0.0;
+  // What a snapshot that kept no per-point sums (an older mpmshock's) held of work_mismatch; else 0.
+  double work_mismatch_before = 0.0;
   // The points not reached yet: [0, unreached_head) and [unreached_tail, n) (unreached.hpp);
   // kNoneSaved in unreached_tail: not known (a snapshot of an older mpmshock), all computed.
   static constexpr std::size_t kNoneSaved = ~std::size_t{0};
@@ -85,8 +89,8 @@ class Simulation {
 
   double time() const { return clock_.time; }
   std::int64_t steps() const { return clock_.steps; }
-  // MPI: the clock's work mismatch waits for settle(), which agrees on the steps' sums at once (one
-  // collective per sample instead of per step); on one rank it is always up to date.
+  // The clock's work mismatch is the one settle() last took: the exact sum of the points' own sums
+  // (one pass and one collective per sample, none per step).
   const Clock& clock() const { return clock_; }
   void settle();
   // MPI: the stop signal any rank got, agreed in the last step (0: none).
@@ -156,7 +160,6 @@ class Simulation {
   bool balanced_once_ = false;
   double busy_seconds_ = 0.0;  // the steps' time since the last balance, outside MPI calls
   double imbalance_ = 1.0;           // by the last balance's measured work
-  std::vector<ExactSum> pending_mismatch_;  // MPI: this rank's work mismatch of the steps not settled
   int stop_signal_ = 0;
   Model model_;
   Particles<D> points_;
