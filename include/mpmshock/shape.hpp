@@ -87,6 +87,20 @@ inline int floor_index(double u) {
   return static_cast<double>(truncated) > u ? truncated - 1 : truncated;
 }
 
+// u as the double it was rounded to: a barrier to FMA contraction for the rules whose first node
+// adds to u (u + 1/2, u - 1/2). Fused with the product that made u, that sum is rounded once in one
+// place and twice in another (the compiler decides per call site), and a point at a half cell took
+// one row in its stencil and the next in the strip bins (test_shape). As a register it costs nothing.
+[[gnu::always_inline]] inline double as_rounded(double u) {
+#if defined(__x86_64__) || defined(__i386__)
+  asm("" : "+x"(u));
+#else
+  volatile double held = u;
+  u = held;
+#endif
+  return u;
+}
+
 // Fills a stencil from a 1D rule applied on each axis, periodic in x and z. Rule::base(u) is the
 // first node touched at grid coordinate u; Rule::weights(d, lp, w, dw) the weights at d = u - base
 // for a point of half-width lp = Rule::half_width(g.lp, F_aa) on that axis.
@@ -134,7 +148,7 @@ struct LinearRule : PointRule {
 
 struct GimpRule {
   static constexpr bool kLanes = false;
-  static int base(double u) { return floor_index(u + 0.5) - 1; }
+  static int base(double u) { return floor_index(as_rounded(u) + 0.5) - 1; }
   // cpGIMP: the initial half-width lp0 (cells) stretched by F_aa, at most 1/2 so that the domain
   // stays within the 3 nodes (a point stretched past twice its size is held at half a cell).
   static double half_width(double lp0, double F_aa) { return std::min(0.5, lp0 * std::abs(F_aa)); }
@@ -163,7 +177,7 @@ struct GimpRule {
 };
 
 struct QuadraticBSplineRule : PointRule {
-  static int base(double u) { return floor_index(u - 0.5); }
+  static int base(double u) { return floor_index(as_rounded(u) - 0.5); }
   static void weights(double d, double, double* w, double* dw) {  // d in [0.5, 1.5)
     w[0] = 0.5 * (1.5 - d) * (1.5 - d);
     w[1] = 0.75 - (d - 1.0) * (d - 1.0);
@@ -304,14 +318,15 @@ struct TensorShape {
   static int first_row(double y, const GridGeometry<D>& g) {
     return Rule::base((y - g.y_min) * g.inv_h);
   }
-  // ... of four points at heights y, lane by lane: what first_row gives each.
+  // ... of four points at heights y, lane by lane: what first_row gives each. In lanes for the lane
+  // rules, whose stencils take their rows the same way (lane_stencils); the others point by point,
+  // as their stencils do.
   template <int D>
   [[gnu::always_inline]] static void first_rows(LaneInts& rows, const Lanes& y, const GridGeometry<D>& g) {
-    const Lanes u = (y - g.y_min) * g.inv_h;
     if constexpr (Rule::kLanes) {
-      Rule::base(rows, u);
+      Rule::base(rows, (y - g.y_min) * g.inv_h);
     } else {
-      for (int l = 0; l < 4; ++l) rows[l] = Rule::base(u[l]);
+      for (int l = 0; l < 4; ++l) rows[l] = first_row(y[l], g);
     }
   }
   // The stencil of a point at x with deformation gradient F (only the point domains use F).
