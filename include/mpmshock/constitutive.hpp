@@ -220,6 +220,11 @@ template <class Strength, class Failure, int D, class State, class F>
   }
 }
 
+// sum += m w: one body of instructions for both ways a group of four is filled (MPMSHOCK_ONE_BODY: an
+// FMA contracted in one inlined copy and not in the other would give a point other bits in
+// another group).
+MPMSHOCK_ONE_BODY inline void add_work_mismatch(Lanes& sum, const Lanes& m, const Lanes& w) { sum += m * w; }
+
 // The update of points p..p+3 (kFour: all of one body) or of point p alone in every lane.
 template <bool kFour, int D, class Eos, class Strength, class Viscosity>
 [[gnu::always_inline]] inline void update_four(Particles<D>& pts, std::size_t p, const Eos& eos, const Strength& strength,
@@ -249,7 +254,7 @@ template <bool kFour, int D, class Eos, class Strength, class Viscosity>
   Lanes m, mismatch;
   load_points<kFour>(m, &pts.m[p]);
   load_points<kFour>(mismatch, &pts.work_mismatch[p]);
-  mismatch += m * st.work_mismatch;
+  add_work_mismatch(mismatch, m, st.work_mismatch);
   if constexpr (kFour) store_points<kFour>(&pts.work_mismatch[p], mismatch);
   else pts.work_mismatch[p] = mismatch[0];
   if (any(checks.bad))

@@ -143,8 +143,8 @@ class Simulation {
   };
   StripLoads strip_loads() const;
   StepStatus agree(const StepStatus& mine) const;  // the same status on every rank: the lowest id's
-  // The step's maximum signal and work mismatch over every rank, and its failure (a bad state before
-  // a point off the grid, each of the lowest id).
+  // The step's maximum signal over every rank, and its failure (a bad state before a point off the
+  // grid, each of the lowest id).
   StepStatus agree_on(StressUpdateResult& update, std::size_t left, const StepStatus& effect);
   bool bins_within_slab() const;  // the step's points touch only the rows held here
   int first_strip_end_needed() const;
