@@ -6,8 +6,6 @@
 // pure and grid-free, over the law types the model chose, so tests drive it directly.
 #pragma once
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
