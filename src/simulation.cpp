@@ -245,7 +245,7 @@ StepStatus Simulation<D>::step(double dt) {
   update_grid_momentum(grid_, c.rows, dt);                             // a_i, v_i^{n+1}
   run(StepSlot::after_grid_update, &StepEffect<D>::after_grid_update); //   (boundary conditions)
   kernels_.velocity_to_points(points_, reached, bins_, grid_, stencils_, halo_, dt,  // G2P: FLIP (/PIC) v_p
-                              model_.flip_fraction);                   //   (MUSL: re-map m_p v_p)
+                              model_.flip_fraction, v_pic_);           //   (MUSL: re-map m_p v_p)
   if (musl) {
     run(StepSlot::before_remap, &StepEffect<D>::before_remap);         //   (plane's fold)
     remap_grid_velocity(grid_, c.rows);                                // MUSL: v~_i
@@ -254,7 +254,7 @@ StepStatus Simulation<D>::step(double dt) {
   c.velocity = musl ? &grid_.v_remap : &grid_.v;
   sum_step_velocities(grid_, c.rows, *c.velocity, dt);                 // v^n_i + u_i
   const std::size_t left = kernels_.gradient_work_and_move(            // L_p, work_p, x_p
-      points_, reached, grid_, stencils_, *c.velocity, dt);
+      points_, reached, grid_, stencils_, *c.velocity, v_pic_, dt);
   unreached_.advance(points_, dt);                                     //   the rest: x_p += v0 dt
   run(StepSlot::after_move, &StepEffect<D>::after_move);               //   (smoothing: tr L_p, work_p)
   StressUpdateResult update = kernels_.update_points(points_, reached, model_, dt, c.volume_rate);  // E, F, s, P, q

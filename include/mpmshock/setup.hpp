@@ -40,12 +40,14 @@ struct InitialState {
 };
 
 // The step's scratch per point besides the points' own fields: the scatter bins, the stencil the
-// step's passes share, and the artificial heat flux's T_p, C_p r_p, C_p T_p (and C_p with several
-// materials; artificial_heat_flux.hpp).
+// step's passes share, the grid velocity that moves the point (transfer.hpp, v_pic), and the
+// artificial heat flux's T_p, C_p r_p, C_p T_p (and C_p with several materials;
+// artificial_heat_flux.hpp).
 template <int D>
 std::size_t step_scratch_bytes(const Scene& s) {
   const std::size_t flux_bytes = s.has_heat_flux() ? (s.one_material() ? 3 : 4) * sizeof(double) : 0;
-  return StripBins::kBytesPerPoint + StencilStore<D>::bytes_per_point(support_of(s.shape_function)) + flux_bytes;
+  return StripBins::kBytesPerPoint + StencilStore<D>::bytes_per_point(support_of(s.shape_function)) +
+         sizeof(Vec<D>) + flux_bytes;
 }
 
 // The memory a scene's run needs, estimated from the scene alone (nothing is allocated).

@@ -42,9 +42,9 @@ struct Kernels {
   void (*to_grid)(const Particles<D>&, const StripBins&, Grid<D>&, const StencilStore<D>&, const Halo<D>&,
                   const HeatFluxRider*);
   void (*velocity_to_points)(Particles<D>&, PointRange, const StripBins&, Grid<D>&, const StencilStore<D>&,
-                             const Halo<D>&, double dt, double flip_fraction);
+                             const Halo<D>&, double dt, double flip_fraction, std::vector<Vec<D>>& v_pic);
   std::size_t (*gradient_work_and_move)(Particles<D>&, PointRange, const Grid<D>&, const StencilStore<D>&,
-                                        const std::vector<Vec<D>>& u, double dt);
+                                        const std::vector<Vec<D>>& u, const std::vector<Vec<D>>& v_pic, double dt);
   StressUpdateResult (*update_points)(Particles<D>&, PointRange, const Model&, double dt, const double* volume_rate);
 };
 
@@ -166,6 +166,7 @@ class Simulation {
   Grid<D> grid_;
   StripBins bins_;
   StencilStore<D> stencils_;  // the step's shape weights, computed once at its start
+  std::vector<Vec<D>> v_pic_;  // the step's sum_i N_ip v_i^{n+1} by point, from G2P to the move
   Kernels<D> kernels_;
   // The step effects the scene calls for (simulation.cpp: effects_for), each slot's in the order made.
   std::vector<std::unique_ptr<StepEffect<D>>> effects_;

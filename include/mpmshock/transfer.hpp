@@ -169,7 +169,11 @@ template <int D>
 void sum_step_velocities(Grid<D>& g, RowRange rows, const std::vector<Vec<D>>& u, double dt);
 
 // G2P of the point velocity. FLIP: v_p += dt sum N a_i. With Blend, v_p = f v_FLIP + (1 - f) v_PIC,
-// v_PIC = sum N v_i^{n+1}: the PIC part damps point-to-point velocity noise. The kinetic energy it
+// v_PIC = sum N v_i^{n+1}: the PIC part damps point-to-point velocity noise. Every point's v_PIC goes
+// to v_pic[p] too, the velocity that moves it (velocity_gradient_work_and_move): gathered here beside
+// a_i, a field more in the same sweep, and not in the gradient pass, where its three sums in 3D
+// pushed the gradients' out of AVX2's 16 registers onto the stack (x86-64-v3, per point-step: 3D
+// narrow column 4,164 -> 3,973; 2D 1,136 -> 1,138; the same bits). The kinetic energy it
 // removes becomes heat at the point (below), so total energy stays conserved to about 1e-4, not
 // to round-off (the MUSL re-map then carries the blended velocities, which the exact-work identity
 // of velocity_gradient_work_and_move assumes are FLIP's). With Remap (MUSL), also scatters
@@ -177,34 +181,32 @@ void sum_step_velocities(Grid<D>& g, RowRange rows, const std::vector<Vec<D>>& u
 template <int D, class Shape, bool Remap, bool Blend>
 void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const StripBins& bins, Grid<D>& g,
                                 const StencilStore<D>& store, [[maybe_unused]] const Halo<D>& halo, double dt,
-                                [[maybe_unused]] double flip_fraction) {
+                                [[maybe_unused]] double flip_fraction, std::vector<Vec<D>>& v_pic) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();
+  if (v_pic.size() < pts.size()) v_pic.resize(pts.size());
   auto kernel = [&](std::size_t p) __attribute__((always_inline)) {
     const auto& st = stencils[p];
     Vec<D> acc{}, pic{};
     if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       RowSums<D, false> acc_sums, pic_sums;
       for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
-        RowLanes<D> an;
+        RowLanes<D> an, vn;
         nodes.load(an, &g.a[row]);
+        nodes.load(vn, &g.v[row]);
         acc_sums.add(r, an);
-        if constexpr (Blend) {
-          RowLanes<D> vn;
-          nodes.load(vn, &g.v[row]);
-          pic_sums.add(r, vn);
-        }
+        pic_sums.add(r, vn);
       });
       const Columns<D> c = columns_of(st);
       acc = acc_sums.value(c);
-      if constexpr (Blend) pic = pic_sums.value(c);
+      pic = pic_sums.value(c);
     } else {
       for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>&) {
         for (int d = 0; d < D; ++d) acc[d] += N * g.a[i][d];
-        if constexpr (Blend)
-          for (int d = 0; d < D; ++d) pic[d] += N * g.v[i][d];
+        for (int d = 0; d < D; ++d) pic[d] += N * g.v[i][d];
       });
     }
+    v_pic[p] = pic;
     Vec<D>& v = pts.v[p];
     for (int d = 0; d < D; ++d) v[d] = v[d] + dt * acc[d];
     if constexpr (Blend) {
@@ -263,14 +265,16 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
 // too would be exact but unstable at any time step (its amplification factor is
 // sqrt(1 + (omega dt)^2 / 2)); hence the two gradients.
 //
-// Positions move with v^{n+1}; periodic coordinates wrap into [0, period). Returns the lowest
-// index of a point that left the grid, or kNoPoint. Only the points of `range`.
+// Positions move with v^{n+1}, as G2P interpolated it (v_pic); periodic coordinates wrap into
+// [0, period). Returns the lowest index of a point that left the grid, or kNoPoint. Only the points
+// of `range`.
 //
 // Reads v^n + u from the grid's v_sum, which sum_step_velocities must have written from the same
 // u and dt on the rows of the step's points (step() calls it just before).
 template <int D, class Shape, bool Strength>
 std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range, const Grid<D>& g,
-                                            const StencilStore<D>& store, const std::vector<Vec<D>>& u, double dt) {
+                                            const StencilStore<D>& store, const std::vector<Vec<D>>& u,
+                                            const std::vector<Vec<D>>& v_pic, double dt) {
   const GridGeometry<D>& geo = g.geo;
   const auto& stencils = store.template of<Shape::support>();
   // The lowest and highest y the points move to (and whether one is NaN): the rows a point's
@@ -282,48 +286,43 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
     const auto& st = stencils[p];
     Mat<D> L{};  // L[u]
     Mat<D> A{};  // L[v^n + u], twice the averaged gradient
-    Vec<D> vel{};
     if constexpr (Shape::support == 4) {  // a row's four nodes at once (node_rows.hpp)
       RowSums<D, true> u_sums, vn_u_sums;  // of u, and of v^n + u
-      RowSums<D, false> v_sums;
-      auto u_and_v = [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
-        RowLanes<D> un, vn;
+      auto of_u = [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
+        RowLanes<D> un;
         nodes.load(un, &u[row]);
-        nodes.load(vn, &g.v[row]);
         u_sums.add(r, un);
-        v_sums.add(r, vn);
       };
       auto vn_plus_u = [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
         RowLanes<D> vn_u;
         nodes.load(vn_u, &g.v_sum[row]);
         vn_u_sums.add(r, vn_u);
       };
-      if constexpr (D == 3) {  // two sweeps: the 21 vector sums of one spill from AVX2's 16 registers
+      if constexpr (D == 3) {  // two sweeps: the 18 vector sums of one spill from AVX2's 16 registers
         // (x86-64-v3: 1,743 -> 1,674 per point-step; with AVX-512's 32 the wall time is the same)
-        for_each_row(st, geo, u_and_v);
+        for_each_row(st, geo, of_u);
         for_each_row(st, geo, vn_plus_u);
       } else {
         for_each_row(st, geo, [&](std::size_t row, const RowFactors<D>& r, const auto& nodes) __attribute__((always_inline)) {
-          u_and_v(row, r, nodes);
+          of_u(row, r, nodes);
           vn_plus_u(row, r, nodes);
         });
       }
       const Columns<D> c = columns_of(st);
       L = u_sums.gradient_of(c);
       A = vn_u_sums.gradient_of(c);
-      vel = v_sums.value(c);
     } else {
-      for_each_node(st, geo, [&](std::size_t i, double N, const Vec<D>& dN) {
+      for_each_node(st, geo, [&](std::size_t i, double, const Vec<D>& dN) {
         for (int d = 0; d < D; ++d) {
           const double ud = u[i][d], sd = g.v_sum[i][d];
           for (int j = 0; j < D; ++j) {
             L(d, j) += ud * dN[j];
             A(d, j) += sd * dN[j];
           }
-          vel[d] += N * g.v[i][d];
         }
       });
     }
+    const Vec<D>& vel = v_pic[p];
     pts.L[p] = L;
     // sigma : L_avg with sigma = s - (P + q) I; the spin does no work.
     double power = -(pts.P[p] + pts.q[p]) * trace(A);
