@@ -167,9 +167,9 @@ void point_temperatures_and_rates(Particles<D>& pts, PointRange range, const Bod
 // The gather's row sums, sum_rows weight r_i (T_i - T_p), by column, from the nodal r_i and T_i.
 struct FluxRowSums {
   Lanes sums{};
-  template <class Nodes>
+  template <class Nodes, class Factor>
   [[gnu::always_inline]] void add(const double* node_rate, const double* node_temperature, std::size_t row,
-                                  double weight, double T_p, const Nodes& nodes) {
+                                  const Factor& weight, double T_p, const Nodes& nodes) {
     Lanes rate, temperature;
     nodes.load(rate, node_rate + row);
     nodes.load(temperature, node_temperature + row);

@@ -51,8 +51,8 @@ struct FluxColumns {
     if constexpr (Sums == FluxSums::three) capacity = column_weight * f.capacity[p];
   }
   // Adds them to one row of the nodal sums with the row's weight.
-  template <class Nodes>
-  [[gnu::always_inline]] void add_to_row(const HeatFluxRider& f, std::size_t row, double weight,
+  template <class Nodes, class Factor>
+  [[gnu::always_inline]] void add_to_row(const HeatFluxRider& f, std::size_t row, const Factor& weight,
                                          const Nodes& nodes) const {
     add(*f.node_rate, rate, row, weight, nodes);
     add(*f.node_temperature, heat, row, weight, nodes);
@@ -60,9 +60,9 @@ struct FluxColumns {
   }
 
  private:
-  template <class Nodes>
+  template <class Nodes, class Factor>
   [[gnu::always_inline]] static void add(std::vector<double>& field, const Lanes& columns, std::size_t row,
-                                         double weight, const Nodes& nodes) {
+                                         const Factor& weight, const Nodes& nodes) {
     Lanes sum;
     nodes.load(sum, &field[row]);
     sum += weight * columns;

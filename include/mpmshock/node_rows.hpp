@@ -18,6 +18,7 @@
 
 #include <cassert>
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 
 #include "mpmshock/grid.hpp"
@@ -175,11 +176,21 @@ template <int D>
   return c;
 }
 
+// In 2D the stencil's y weight and derivative, which the passes multiply by straight from memory; in
+// 3D products of y and z factors, found for the four layers at once and each spread over four
+// lanes (for_each_row: x86-64-v3, 3D narrow column 3,973 -> 3,631 instructions per point-step).
 template <int D>
 struct RowFactors {
-  double weight;       // the product of the row's y (and z) weights
-  double gradient[D];  // [j] for j = 1 .. D-1: the same product with axis j's derivative; [0] unused
+  using Factor = std::conditional_t<D == 3, Lanes, double>;
+  Factor weight;       // the product of the row's y (and z) weights
+  Factor gradient[D];  // [j] for j = 1 .. D-1: the same product with axis j's derivative; [0] unused
 };
+
+// Lane C of v in all four lanes: one permute.
+template <int C>
+[[gnu::always_inline]] inline Lanes lane_in_all(const Lanes& v) {
+  return __builtin_shufflevector(v, v, C, C, C, C);
+}
 
 // A stencil row's four nodes in a nodal field, with how they lie (column_split) known when compiled,
 // so that a pass decides it once per point and not at every load and store. `row` points at the
@@ -210,7 +221,7 @@ template <int D, class F>
   auto rows = [&](const auto& nodes) __attribute__((always_inline)) {
     const std::size_t first = g.row_start(st.row0), stride = g.nodes_per_row();
     RowFactors<D> r;
-    r.gradient[0] = 0.0;
+    r.gradient[0] = typename RowFactors<D>::Factor{};
     for (int b = 0; b < 4; ++b) {
       const double wy = st.w[1][b], gy = st.g[1][b];
       const std::size_t row = first + static_cast<std::size_t>(b) * stride;
@@ -218,14 +229,21 @@ template <int D, class F>
         r.weight = wy;
         r.gradient[1] = gy;
         f(row, r, nodes);
-      } else {
-        for (int c = 0; c < 4; ++c) {
-          const double wz = st.w[2][c], gz = st.g[2][c];
-          r.weight = wy * wz;
-          r.gradient[1] = gy * wz;
-          r.gradient[2] = wy * gz;
+      } else {  // the four layers' products at once, each then spread from its lane
+        Lanes wz, gz;
+        load_lanes(wz, st.w[2]);
+        load_lanes(gz, st.g[2]);
+        const Lanes weights = wy * wz, y_gradients = gy * wz, z_gradients = wy * gz;
+        auto layer = [&](auto c) __attribute__((always_inline)) {
+          r.weight = lane_in_all<c>(weights);
+          r.gradient[1] = lane_in_all<c>(y_gradients);
+          r.gradient[2] = lane_in_all<c>(z_gradients);
           f(row + static_cast<std::size_t>(st.layer[c]) * static_cast<std::size_t>(g.nx), r, nodes);
-        }
+        };
+        layer(std::integral_constant<int, 0>{});
+        layer(std::integral_constant<int, 1>{});
+        layer(std::integral_constant<int, 2>{});
+        layer(std::integral_constant<int, 3>{});
       }
     }
   };
