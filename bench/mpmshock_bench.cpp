@@ -211,8 +211,9 @@ double peak_resident_bytes() {
 // The bytes one step must move per point if each pass over the points reads and writes only the
 // fields it needs, once, and the grid stays in cache (STREAM's convention: a written byte counts
 // once). Passes (transfer.hpp, constitutive.hpp): bin (x), P2G (x, F, m, V0, v, s, P, q; writes the
-// stencil), G2P with the MUSL re-map (the stencil, m, v; writes v), gradient, work and move (the
-// stencil, x, F, V0, m, P, q, s; writes L, work, x), point update (L, work, F, E, P, q, s, eps_p;
+// stencil), G2P with the MUSL re-map (the stencil, m, v; writes v and v_pic, the grid velocity that
+// moves the point), gradient, work and move (the stencil, v_pic, x, F, V0, m, P, q, s; writes L,
+// work, x), point update (L, work, F, E, P, q, s, eps_p;
 // writes F, E, P, q, s, eps_p). The stencil is the default bspline2_domain's (4 nodes per axis).
 template <int D>
 double modelled_traffic(const Particles<D>& p) {
@@ -221,8 +222,8 @@ double modelled_traffic(const Particles<D>& p) {
   const double s = p.has_strength() ? sizeof(Deviator<D>) + d : 0.0;  // s and eps_p
   const double bin = x + 4.0;                                           // + the point's bin index
   const double p2g = x + F + 2 * d + v + s + 2 * d + st;
-  const double g2p = st + d + v + v;
-  const double move = st + x + F + 2 * d + 2 * d + s + (L + d + x);
+  const double g2p = st + d + v + v + v;
+  const double move = st + v + x + F + 2 * d + 2 * d + s + (L + d + x);
   const double update = (L + d + F + 3 * d + s) + (F + 3 * d + s);
   return bin + p2g + g2p + move + update;
 }

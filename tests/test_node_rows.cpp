@@ -2,7 +2,8 @@
 // periodic row (one run, or wrapped round the seam after 1, 2 or 3 nodes), every first column and
 // every grid width from the narrowest allowed (4 cells) to 9, in 2D and 3D, for_each_row's loads
 // give each lane its node's value and its stores write exactly the stencil's nodes, each with its
-// own lane, and nothing else.
+// own lane, and nothing else; and each row's factors are its y (and z) weights and derivatives,
+// in 3D their products in every lane, row by row in for_each_node's order.
 #include <cstring>
 #include <random>
 #include <vector>
@@ -92,6 +93,40 @@ void every_split(int nx) {
   }
 }
 
+// Each row's factors, on a stencil with distinct weights and derivatives on every axis: the row
+// weight w_y(b) (w_z(c)) and the gradient factors g_y(b) (w_z(c)) and w_y(b) g_z(c), the same
+// products as computed one by one, in every lane in 3D; rows y outermost, then z.
+template <int D>
+void row_factors() {
+  const GridGeometry<D> g = grid<D>(7, 6, 5);
+  std::mt19937_64 rng(42 + D);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  Stencil<4, D> st = stencil_at<D>(2, 7, 5, 1);
+  for (int k = 0; k < D; ++k)
+    for (int a = 0; a < 4; ++a) {
+      st.w[k][a] = value(rng);
+      st.g[k][a] = value(rng);
+    }
+  int visited = 0;
+  for_each_row(st, g, [&](std::size_t, const RowFactors<D>& r, const auto&) {
+    const int b = D == 2 ? visited : visited / 4, c = D == 2 ? 0 : visited % 4;
+    ++visited;
+    const double wy = st.w[1][b], gy = st.g[1][b];
+    if constexpr (D == 2) {
+      CHECK(r.weight == wy);
+      CHECK(r.gradient[1] == gy);
+    } else {
+      const double wz = st.w[2][c], gz = st.g[2][c];
+      for (int l = 0; l < 4; ++l) {
+        CHECK(r.weight[l] == wy * wz);
+        CHECK(r.gradient[1][l] == gy * wz);
+        CHECK(r.gradient[2][l] == wy * gz);
+      }
+    }
+  });
+  CHECK(visited == (D == 2 ? 4 : 16));
+}
+
 }  // namespace
 
 int main() {
@@ -99,5 +134,7 @@ int main() {
     every_split<2>(nx);
     every_split<3>(nx);
   }
+  row_factors<2>();
+  row_factors<3>();
   return check::result();
 }

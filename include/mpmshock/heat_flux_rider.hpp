@@ -11,10 +11,11 @@
 // sweep did (where that skipped a point, a point of rate 0 or in a bad state, P2G adds +0, which
 // changes no sum that starts at +0), so the sums are the same numbers (the same bits built with
 // -ffp-contract=off; with contraction, as the compiler fuses the new loop). The gather rides on
-// nothing: in G2P's sweep or the velocity gradient's it cost as much as its own (the extra
+// nothing: in G2P's sweep or the velocity gradient's it saved little or nothing (the extra
 // fields' row offsets spill from the registers: 2D, 1,212 instructions per point-step with its own
 // sweep, 1,216 riding on G2P, 1,198 on the gradient pass, which would also move its heat after the
-// FLIP/PIC blend's).
+// FLIP/PIC blend's; measured 2026-12-07 before G2P began to sum v^{n+1} for the move and the
+// gradient pass stopped, which changes both sweeps: not measured since).
 #pragma once
 
 #include <cstddef>

@@ -156,7 +156,8 @@ template <int W, int Split, std::size_t... K>
 // A four-column stencil's shape, factored. The node of column c in a row has
 //   N = w_c * row.weight,   dN/dx = g_c * row.weight,   dN/dx_j = w_c * row.gradient[j] (j = y, z)
 // with w_c and g_c the x weight and derivative of column c (Columns, once per point) and the row's
-// factors the products of its y (and z) weights and derivatives (RowFactors, once per row). So a
+// factors the products of its y (and z) weights and derivatives (RowFactors: once per row, in 3D
+// for a y row's four z layers at once). So a
 // scatter weighs a point's values by the columns once and adds them to each row with a row factor,
 // and a gather sums a row's nodes with the row factors and weighs the sums by the columns once at the
 // end (RowSums): the node weights are never formed (issue 32: they were 6 products a row in 2D,
@@ -176,7 +177,7 @@ template <int D>
   return c;
 }
 
-// In 2D the stencil's y weight and derivative, which the passes multiply by straight from memory; in
+// In 2D the stencil's y weight and derivative, which the passes broadcast from memory; in
 // 3D products of y and z factors, found for the four layers at once and each spread over four
 // lanes (for_each_row: x86-64-v3, 3D narrow column 3,973 -> 3,631 instructions per point-step).
 template <int D>

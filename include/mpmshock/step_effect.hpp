@@ -46,7 +46,8 @@ struct StepContext {
 enum class StepSlot : unsigned {
   before_to_grid,      // before P2G (volumetric smoothing's pressure; the heat flux's point values)
   after_to_grid,       // after P2G, before anything reads the grid
-  after_grid_update,   // after the grid momentum update: nodal v^{n+1} and a set
+  after_grid_update,   // after the grid momentum update: nodal v^{n+1} and a set, final after this
+                       // slot (G2P sums v^{n+1} at the points, and they move with that sum)
   before_remap,        // MUSL: after the points' momenta are scattered again
   after_remap,         // MUSL: after the re-mapped nodal velocity is set
   after_move,          // after the velocity gradient, work and move

@@ -270,7 +270,8 @@ void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const Strip
 // of `range`.
 //
 // Reads v^n + u from the grid's v_sum, which sum_step_velocities must have written from the same
-// u and dt on the rows of the step's points (step() calls it just before).
+// u and dt on the rows of the step's points (step() calls it just before), and v_pic, which G2P
+// must have written for the points of `range` in the same step.
 template <int D, class Shape, bool Strength>
 std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range, const Grid<D>& g,
                                             const StencilStore<D>& store, const std::vector<Vec<D>>& u,
@@ -298,8 +299,9 @@ std::size_t velocity_gradient_work_and_move(Particles<D>& pts, PointRange range,
         nodes.load(vn_u, &g.v_sum[row]);
         vn_u_sums.add(r, vn_u);
       };
-      if constexpr (D == 3) {  // two sweeps: the 18 vector sums of one spill from AVX2's 16 registers
-        // (x86-64-v3: 1,743 -> 1,674 per point-step; with AVX-512's 32 the wall time is the same)
+      if constexpr (D == 3) {  // two sweeps: 18 vector sums would not fit AVX2's 16 registers (when
+        // the pass also summed v^{n+1}, 21 in one sweep against 12 and 9: x86-64-v3, 1,743 -> 1,674
+        // per point-step; with AVX-512's 32 the wall time was the same)
         for_each_row(st, geo, of_u);
         for_each_row(st, geo, vn_plus_u);
       } else {
