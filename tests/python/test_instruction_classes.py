@@ -40,7 +40,16 @@ tool = load_tool()
     ("vmovapd", "YMMWORD PTR [rbp-0x170],ymm3", "stack"),
     ("vmovsd", "xmm0,QWORD PTR [rsp+0x48]", "stack"),
     ("mov", "QWORD PTR [rsp+0x10],rdi", "stack"),
-    ("push", "rbp", "integer, address"),
+    ("push", "rbp", "stack"),
+    ("pop", "r12", "stack"),
+    ("mov", "rax,QWORD PTR [rbp+rdx*8+0x10]", "integer, address"),
+    ("vmovupd", "ymm0,YMMWORD PTR [rbp+rax*8]", "fp loads"),
+    ("vmovsd", "xmm1,QWORD PTR [rbp-0x48]", "stack"),
+    ("vpshufd", "xmm0,xmm1,0x4e", "fp register moves"),
+    ("vpunpcklqdq", "xmm0,xmm1,xmm2", "fp register moves"),
+    ("vgatherdpd", "ymm0,QWORD PTR [rax+xmm1*8],ymm2", "fp loads"),
+    ("vmaskmovpd", "YMMWORD PTR [rdi],ymm1,ymm0", "fp stores"),
+    ("vzeroupper", "", "fp arithmetic"),
     ("mov", "rax,QWORD PTR [rbx+0x8]", "integer, address"),
     ("lea", "rsi,[rsp+0x10]", "integer, address"),
     ("imul", "rax,rdx", "integer, address"),
@@ -100,6 +109,37 @@ def test_counts_from_callgrind(tmp_path):
     assert counts["library"] == 40
     assert counts["branches"] == 0  # the call instruction's own execution is not in this file
     assert sum(counts.values()) == 73
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("vfmadd231pd ymm0,ymm1,ymm2", ("vfmadd231pd", "ymm0,ymm1,ymm2")),
+    ("notrack jmp rax", ("jmp", "rax")),
+    ("rep stos BYTE PTR es:[rdi],al", ("stos", "BYTE PTR es:[rdi],al")),
+    ("lock cmpxchg DWORD PTR [rdx],ecx", ("cmpxchg", "DWORD PTR [rdx],ecx")),
+    ("ret", ("ret", "")),
+])
+def test_prefixes_dropped(text, expected):
+    assert tool.split_instruction(text) == expected
+
+
+def test_jump_table_is_a_branch():
+    assert tool.instruction_class(*tool.split_instruction("notrack jmp rax")) == "branches"
+
+
+def test_build_without_avx_is_refused():
+    sse = {0x1000: ("addsd", "xmm0,xmm1"), 0x1004: ("movapd", "xmm2,xmm3")}
+    with pytest.raises(ValueError, match="without AVX"):
+        tool.classify({0x1000: 5, 0x1004: 5}, 0, sse)
+
+
+def test_compressed_callgrind_file_is_refused(tmp_path):
+    path = tmp_path / "callgrind.out"
+    path.write_text(CALLGRIND.replace("ob=/build/src/mpmshock", "ob=(2) /build/src/mpmshock"))
+    with pytest.raises(ValueError, match="compress-strings=no"):
+        tool.executed(path, "mpmshock")
+    path.write_text(CALLGRIND.replace("positions: instr line", "positions: line"))
+    with pytest.raises(ValueError, match="dump-instr"):
+        tool.executed(path, "mpmshock")
 
 
 def test_foreign_addresses_are_an_error(tmp_path):
