@@ -213,8 +213,7 @@ double peak_resident_bytes() {
 // once). Passes (transfer.hpp, constitutive.hpp): bin (x), P2G (x, F, m, V0, v, s, P, q; writes the
 // stencil), G2P with the MUSL re-map (the stencil, m, v; writes v and v_pic, the grid velocity that
 // moves the point), gradient, work and move (the stencil, v_pic, x, F, V0, m, P, q, s; writes L,
-// work, x), point update (L, work, F, E, P, q, s, eps_p;
-// writes F, E, P, q, s, eps_p). The stencil is the default bspline2_domain's (4 nodes per axis).
+// work, x), point update (L, work, F, E, P, q, s, eps_p; writes F, E, P, q, s, eps_p). The stencil is the default bspline2_domain's (4 nodes per axis).
 template <int D>
 double modelled_traffic(const Particles<D>& p) {
   const double x = sizeof(Vec<D>), v = sizeof(Vec<D>), F = sizeof(Mat<D>), L = sizeof(Mat<D>), d = sizeof(double);

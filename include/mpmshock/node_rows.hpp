@@ -221,8 +221,12 @@ template <int D, class F>
 [[gnu::always_inline]] inline void for_each_row(const Stencil<4, D>& st, const GridGeometry<D>& g, F&& f) {
   auto rows = [&](const auto& nodes) __attribute__((always_inline)) {
     const std::size_t first = g.row_start(st.row0), stride = g.nodes_per_row();
-    RowFactors<D> r;
-    r.gradient[0] = typename RowFactors<D>::Factor{};
+    RowFactors<D> r{};
+    [[maybe_unused]] Lanes wz, gz;  // 3D: the four layers' z weights and derivatives
+    if constexpr (D == 3) {
+      load_lanes(wz, st.w[2]);
+      load_lanes(gz, st.g[2]);
+    }
     for (int b = 0; b < 4; ++b) {
       const double wy = st.w[1][b], gy = st.g[1][b];
       const std::size_t row = first + static_cast<std::size_t>(b) * stride;
@@ -231,9 +235,6 @@ template <int D, class F>
         r.gradient[1] = gy;
         f(row, r, nodes);
       } else {  // the four layers' products at once, each then spread from its lane
-        Lanes wz, gz;
-        load_lanes(wz, st.w[2]);
-        load_lanes(gz, st.g[2]);
         const Lanes weights = wy * wz, y_gradients = gy * wz, z_gradients = wy * gz;
         auto layer = [&](auto c) __attribute__((always_inline)) {
           r.weight = lane_in_all<c>(weights);

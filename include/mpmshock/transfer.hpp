@@ -169,15 +169,17 @@ template <int D>
 void sum_step_velocities(Grid<D>& g, RowRange rows, const std::vector<Vec<D>>& u, double dt);
 
 // G2P of the point velocity. FLIP: v_p += dt sum N a_i. With Blend, v_p = f v_FLIP + (1 - f) v_PIC,
-// v_PIC = sum N v_i^{n+1}: the PIC part damps point-to-point velocity noise. Every point's v_PIC goes
-// to v_pic[p] too, the velocity that moves it (velocity_gradient_work_and_move): gathered here beside
-// a_i, a field more in the same sweep, and not in the gradient pass, where its three sums in 3D
-// pushed the gradients' out of AVX2's 16 registers onto the stack (x86-64-v3, per point-step: 3D
-// narrow column 4,164 -> 3,973; 2D 1,136 -> 1,138; the same bits). The kinetic energy it
+// v_PIC = sum N v_i^{n+1}: the PIC part damps point-to-point velocity noise. The kinetic energy it
 // removes becomes heat at the point (below), so total energy stays conserved to about 1e-4, not
 // to round-off (the MUSL re-map then carries the blended velocities, which the exact-work identity
 // of velocity_gradient_work_and_move assumes are FLIP's). With Remap (MUSL), also scatters
 // m_p v_p^{n+1} back to the nodes at the same stencil.
+//
+// Every point's v_PIC, blended or not, goes to v_pic[p], the velocity that moves it
+// (velocity_gradient_work_and_move): gathered here beside a_i, a field more in the same sweep, and
+// not in the gradient pass, where its three sums in 3D pushed the gradients' out of AVX2's 16
+// registers onto the stack (x86-64-v3, per point-step: 3D narrow column 4,164 -> 3,973; 2D
+// 1,136 -> 1,138; the same bits).
 template <int D, class Shape, bool Remap, bool Blend>
 void grid_to_particles_velocity(Particles<D>& pts, PointRange range, const StripBins& bins, Grid<D>& g,
                                 const StencilStore<D>& store, [[maybe_unused]] const Halo<D>& halo, double dt,
